@@ -1,0 +1,26 @@
+#pragma once
+// Helpers shared by the subcommands: TCLAP set-up with the common options (--verbosity), and
+// parsing that turns TCLAP's errors into our one-line errors.
+#include <tclap/CmdLine.h>
+
+#include <string>
+
+namespace radarslam::cli {
+
+/// A TCLAP command line with radarslam's conventions: --help, --version, and --verbosity
+/// (DEBUG|INFO|WARN|ERROR, default INFO) applied to the radarslam logger on parse().
+class CommandLine {
+ public:
+  CommandLine(const std::string& name, const std::string& description);
+  TCLAP::CmdLine& tclap() { return cmd_; }
+  /// Parses or throws InputError("radarslam <name>", "<what is wrong>"). --help/--version print
+  /// and exit(0) as usual.
+  void parse(int argc, char** argv);
+
+ private:
+  std::string name_;
+  TCLAP::CmdLine cmd_;
+  TCLAP::ValueArg<std::string> verbosity_;
+};
+
+}  // namespace radarslam::cli

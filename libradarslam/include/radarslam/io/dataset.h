@@ -1,0 +1,63 @@
+#pragma once
+// Reading radar datasets. One entry point, openDataset(), detects the layout of a directory (or a
+// .rawlog file) and returns a streaming reader: scans are decoded one at a time on request, never
+// the whole sequence in memory. Geometry comes from the data (and optional overrides), never from
+// a hard-coded Oxford size. Ground truth, when the dataset has it, is converted to radarslam's one
+// convention: the radar's absolute SE(2) pose at each stamp (see core/trajectory.h), which is
+// interpolated to a scan's reference time (CObservationRadarScan::refStampNs()).
+//
+// Errors: every problem with the data is an InputError whose where() is the offending file.
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "radarslam/core/trajectory.h"
+#include "radarslam/obs/CObservationRadarScan.h"
+
+namespace radarslam {
+
+enum class DatasetKind { Oxford, MulRanOxfordForm, MulRanPolar, Boreas, Radiate, Rawlog };
+
+std::string toString(DatasetKind kind);
+
+struct ReaderOptions {
+  /// Overrides of the sensor geometry where a format does not carry it (0 = use the default
+  /// for the detected dataset/sensor).
+  double range_resolution_m = 0.0;
+  std::optional<double> range_offset_m;
+};
+
+class DatasetReader {
+ public:
+  virtual ~DatasetReader() = default;
+
+  virtual DatasetKind kind() const = 0;
+  /// The directory (or .rawlog file) this reader was opened on.
+  virtual const std::filesystem::path& root() const = 0;
+  /// Human-readable sensor name, e.g. "Navtech CTS350-X".
+  virtual std::string sensorName() const = 0;
+
+  /// Number of scans in the sequence index.
+  virtual std::size_t size() const = 0;
+  /// Stamp of scan i from the index (file name or timestamp list) without decoding the scan.
+  /// This is the dataset's own stamp (Oxford: first azimuth; MulRan: last; Boreas: middle).
+  virtual StampNs indexStamp(std::size_t i) const = 0;
+  /// Decodes scan i (0-based, in time order). Throws InputError(file, problem) for a bad scan.
+  virtual CObservationRadarScan::Ptr readScan(std::size_t i) const = 0;
+  /// Path of the file holding scan i (for messages); the .rawlog itself for rawlogs.
+  virtual std::filesystem::path scanPath(std::size_t i) const = 0;
+
+  /// Ground truth as absolute radar SE(2) poses; empty if the dataset has none.
+  virtual const Trajectory& groundTruth() const = 0;
+  bool hasGroundTruth() const { return !groundTruth().empty(); }
+  /// Ground-truth pose at `t` (interpolated), nullopt outside the ground truth's span.
+  std::optional<mrpt::math::TPose2D> groundTruthAt(StampNs t) const { return interpolatePose(groundTruth(), t); }
+};
+
+/// Detects the dataset kind from the directory layout (or a .rawlog file) and opens it.
+/// Throws InputError(path, "unknown dataset layout: ...") naming what was expected.
+std::unique_ptr<DatasetReader> openDataset(const std::filesystem::path& path, const ReaderOptions& options = {});
+
+}  // namespace radarslam

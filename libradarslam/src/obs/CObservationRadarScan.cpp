@@ -1,0 +1,103 @@
+#include "radarslam/obs/CObservationRadarScan.h"
+
+#include <mrpt/serialization/CArchive.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <ostream>
+#include <sstream>
+
+IMPLEMENTS_SERIALIZABLE(CObservationRadarScan, mrpt::obs::CObservation, radarslam)
+
+namespace radarslam {
+
+namespace {
+// Guards against absurd sizes in corrupt archives before allocating (RAS6 has 6848 bins).
+constexpr std::uint32_t kMaxAzimuths = 1u << 14;
+constexpr std::uint32_t kMaxBins = 1u << 16;
+}  // namespace
+
+void CObservationRadarScan::resize(std::uint32_t azimuths, std::uint32_t bins) {
+  num_azimuths = azimuths;
+  num_bins = bins;
+  power.assign(static_cast<std::size_t>(azimuths) * bins, 0);
+  azimuth_stamps_ns.assign(azimuths, 0);
+  azimuth_angles_rad.resize(azimuths);
+  for (std::uint32_t i = 0; i < azimuths; ++i)
+    azimuth_angles_rad[i] = 2.0 * std::numbers::pi * i / std::max<std::uint32_t>(azimuths, 1);
+  azimuth_valid.assign(azimuths, 1);
+}
+
+StampNs CObservationRadarScan::refStampNs() const {
+  if (azimuth_stamps_ns.empty()) return 0;
+  // Halve each term first: no int64 overflow for any real stamp.
+  return azimuth_stamps_ns.front() / 2 + azimuth_stamps_ns.back() / 2 +
+         (azimuth_stamps_ns.front() % 2 + azimuth_stamps_ns.back() % 2) / 2;
+}
+
+void CObservationRadarScan::updateReferenceTime() { timestamp = toMrptTime(refStampNs()); }
+
+std::string CObservationRadarScan::checkConsistency() const {
+  std::ostringstream why;
+  if (num_azimuths == 0 || num_bins == 0) why << "empty scan (" << num_azimuths << "x" << num_bins << ")";
+  else if (num_azimuths > kMaxAzimuths || num_bins > kMaxBins)
+    why << "implausible size " << num_azimuths << "x" << num_bins;
+  else if (power.size() != static_cast<std::size_t>(num_azimuths) * num_bins)
+    why << "power has " << power.size() << " cells, expected " << num_azimuths << "x" << num_bins;
+  else if (azimuth_stamps_ns.size() != num_azimuths || azimuth_angles_rad.size() != num_azimuths ||
+           azimuth_valid.size() != num_azimuths)
+    why << "per-azimuth arrays do not have " << num_azimuths << " entries";
+  else if (!(range_resolution_m > 0.0) || !std::isfinite(range_resolution_m))
+    why << "range resolution must be > 0 (got " << range_resolution_m << ")";
+  else if (!std::isfinite(range_offset_m))
+    why << "range offset is not finite";
+  else {
+    for (std::size_t i = 0; i < num_azimuths; ++i)
+      if (!std::isfinite(azimuth_angles_rad[i])) {
+        why << "azimuth " << i << " angle is not finite";
+        break;
+      }
+  }
+  return why.str();
+}
+
+void CObservationRadarScan::getDescriptionAsText(std::ostream& o) const {
+  CObservation::getDescriptionAsText(o);
+  o << "Radar scan: " << num_azimuths << " azimuths x " << num_bins << " bins, " << range_resolution_m
+    << " m/bin, range offset " << range_offset_m << " m, max range " << maxRange() << " m\n";
+  if (!azimuth_stamps_ns.empty())
+    o << "Sweep: first azimuth " << azimuth_stamps_ns.front() << " ns, last " << azimuth_stamps_ns.back()
+      << " ns, reference (mid) " << refStampNs() << " ns\n";
+  o << "Sensor pose on vehicle: " << sensorPose << "\n";
+}
+
+// Version 0 layout: label, timestamp, sensor pose, geometry, per-azimuth arrays, power.
+uint8_t CObservationRadarScan::serializeGetVersion() const { return 0; }
+
+void CObservationRadarScan::serializeTo(mrpt::serialization::CArchive& out) const {
+  out << sensorLabel << timestamp << sensorPose;
+  out << num_azimuths << num_bins << range_resolution_m << range_offset_m;
+  out.WriteBufferFixEndianness(azimuth_stamps_ns.data(), azimuth_stamps_ns.size());
+  out.WriteBufferFixEndianness(azimuth_angles_rad.data(), azimuth_angles_rad.size());
+  out.WriteBuffer(azimuth_valid.data(), azimuth_valid.size());
+  out.WriteBuffer(power.data(), power.size());
+}
+
+void CObservationRadarScan::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version) {
+  if (version != 0) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+  in >> sensorLabel >> timestamp >> sensorPose;
+  in >> num_azimuths >> num_bins >> range_resolution_m >> range_offset_m;
+  if (num_azimuths > kMaxAzimuths || num_bins > kMaxBins)
+    THROW_EXCEPTION_FMT("corrupt radar scan: implausible size %ux%u", num_azimuths, num_bins);
+  azimuth_stamps_ns.resize(num_azimuths);
+  azimuth_angles_rad.resize(num_azimuths);
+  azimuth_valid.resize(num_azimuths);
+  power.resize(static_cast<std::size_t>(num_azimuths) * num_bins);
+  in.ReadBufferFixEndianness(azimuth_stamps_ns.data(), azimuth_stamps_ns.size());
+  in.ReadBufferFixEndianness(azimuth_angles_rad.data(), azimuth_angles_rad.size());
+  in.ReadBuffer(azimuth_valid.data(), azimuth_valid.size());
+  in.ReadBuffer(power.data(), power.size());
+}
+
+}  // namespace radarslam
