@@ -60,4 +60,30 @@ class DatasetReader {
 /// Throws InputError(path, "unknown dataset layout: ...") naming what was expected.
 std::unique_ptr<DatasetReader> openDataset(const std::filesystem::path& path, const ReaderOptions& options = {});
 
+/// Decodes one scan file (an Oxford/Boreas/MulRan/RADIATE polar PNG, or a MulRan ray CSV) on
+/// its own, detecting the format from the file and the dataset directory around it.
+CObservationRadarScan::Ptr readScanFile(const std::filesystem::path& scan_file, const ReaderOptions& options = {});
+
+/// Iterates a dataset in time order. Every scan is checked (decodes, consistent geometry, its
+/// reference time later than the previous scan's). With skip_bad_scans a bad scan is logged as a
+/// warning and skipped; without it the InputError naming the file propagates.
+class ScanIterator {
+ public:
+  ScanIterator(const DatasetReader& reader, bool skip_bad_scans, std::size_t first = 0,
+               std::size_t end = static_cast<std::size_t>(-1));
+  /// The next good scan, or nullptr at the end.
+  CObservationRadarScan::Ptr next();
+  /// Dataset index of the scan last returned by next().
+  std::size_t index() const { return last_; }
+  std::size_t skipped() const { return skipped_; }
+  std::size_t total() const { return end_ - first_; }  ///< scans this iterator will visit
+
+ private:
+  const DatasetReader& reader_;
+  bool skip_;
+  std::size_t first_, end_, pos_, last_ = 0, skipped_ = 0;
+  StampNs last_stamp_ = 0;
+  bool have_last_stamp_ = false;
+};
+
 }  // namespace radarslam
