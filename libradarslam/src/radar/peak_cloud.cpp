@@ -1,0 +1,71 @@
+#include "radarslam/radar/peak_cloud.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "radarslam/core/errors.h"
+#include "radarslam/core/yaml_params.h"
+#include "radarslam/radar/find_peaks.h"
+
+namespace radarslam {
+
+void loadParams(const YamlParams& yaml, PeakCloudParams& params) {
+  yaml.get("min_peak_prominence", params.min_peak_prominence);
+  yaml.get("min_peak_distance_bins", params.min_peak_distance_bins);
+  yaml.get("min_range_m", params.min_range_m);
+  yaml.get("max_range_m", params.max_range_m);
+}
+
+std::pair<std::uint32_t, std::uint32_t> binWindow(const CObservationRadarScan& scan, double min_range_m,
+                                                  double max_range_m) {
+  const double res = scan.range_resolution_m;
+  const double n = scan.num_bins;
+  // bin k is inside iff offset + k * res >= min (and <= max)
+  const double first = std::ceil((min_range_m - scan.range_offset_m) / res - 1e-9);
+  const double last =
+      max_range_m > 0.0 ? std::floor((max_range_m - scan.range_offset_m) / res + 1e-9) : n - 1;
+  const auto lo = static_cast<std::uint32_t>(std::clamp(first, 0.0, n));
+  const auto hi = static_cast<std::uint32_t>(std::clamp(last + 1.0, 0.0, n));
+  return {lo, std::max(lo, hi)};
+}
+
+std::vector<RadarPoint> extractPeakCloud(const CObservationRadarScan& scan, const PeakCloudParams& params) {
+  if (const std::string problem = scan.checkConsistency(); !problem.empty())
+    throw InputError(scan.sensorLabel.empty() ? std::string("radar scan") : scan.sensorLabel,
+                     "cannot extract peaks: " + problem);
+  const auto [lo, hi] = binWindow(scan, params.min_range_m, params.max_range_m);
+  const FindPeaksParams fp{params.min_peak_prominence, params.min_peak_distance_bins};
+
+  std::vector<RadarPoint> cloud;
+  std::vector<Peak> peaks;
+  for (std::uint32_t a = 0; a < scan.num_azimuths; ++a) {
+    const auto row = scan.row(a).subspan(lo, hi - lo);
+    findPeaks(row, fp, peaks);  // Algorithm 1, line 3
+    if (peaks.empty()) continue;
+
+    // Algorithm 1, line 4: mean and (population) standard deviation of the peak powers.
+    double sum = 0.0;
+    for (const Peak& p : peaks) sum += p.height;
+    const double mu = sum / static_cast<double>(peaks.size());
+    double ss = 0.0;
+    for (const Peak& p : peaks) ss += (p.height - mu) * (p.height - mu);
+    const double sigma = std::sqrt(ss / static_cast<double>(peaks.size()));
+
+    // Lines 5-9: keep peaks >= mu + sigma, as points along this azimuth's angle (eq. (1)).
+    const double c = std::cos(scan.azimuth_angles_rad[a]), s = std::sin(scan.azimuth_angles_rad[a]);
+    for (const Peak& p : peaks) {
+      if (p.height < mu + sigma) continue;
+      const double r = scan.binRange(lo + p.index);
+      RadarPoint pt;
+      pt.x = static_cast<float>(r * c);
+      pt.y = static_cast<float>(r * s);
+      pt.range_m = static_cast<float>(r);
+      pt.power = p.height;
+      pt.azimuth = a;
+      cloud.push_back(pt);
+    }
+  }
+  return cloud;
+}
+
+}  // namespace radarslam
