@@ -1,0 +1,18 @@
+#pragma once
+// When the current frame becomes the new keyframe (paper Sec. III-A, following ORB-SLAM): too few
+// matches with the keyframe, or moved / turned too far from it. The authors' configuration makes
+// a keyframe every 2 m or 0.2 rad.
+#include <mrpt/math/TPose2D.h>
+
+namespace radarslam {
+
+struct KeyframeParams {
+  double max_translation_m = 2.0;
+  double max_rotation_rad = 0.2;
+  int min_inliers = 60;  ///< fewer inliers with the keyframe than this -> new keyframe
+};
+
+/// `motion` = T_keyframe_current; `inliers` = consistent matches with the keyframe.
+bool needNewKeyframe(const KeyframeParams& params, const mrpt::math::TPose2D& motion, int inliers);
+
+}  // namespace radarslam

@@ -1,0 +1,59 @@
+#pragma once
+// RadarSLAM pose tracking (paper Sec. III-A): keyframe-based radar odometry.
+//   scan -> Cartesian image -> keypoints + descriptors -> motion compensation (ours) ->
+//   matching within a motion-prior radius -> consistency graph (eq. (3)) -> maximum clique ->
+//   SVD pose -> refinement against the keyframe's points (eq. (4)) -> C_t = C_k T_tk^-1 (eq. (2))
+//   -> keyframe decision.
+// A scan that cannot be tracked never aborts the run: its pose is predicted with constant
+// velocity, it becomes the new keyframe (re-initialisation) and the next scan is matched against
+// it with the wide initial search radius.
+#include <memory>
+
+#include "radarslam/core/trajectory.h"
+#include "radarslam/frontend/motion_compensation.h"
+#include "radarslam/frontend/odometry_params.h"
+
+namespace radarslam {
+
+enum class TrackingStatus { Initialised, Tracking, Lost, Recovered };
+const char* toString(TrackingStatus s);
+
+/// Wall time of each stage of one scan, milliseconds. `align_prep` smooths the image for patch
+/// alignment; `refine` includes the patch alignment of matches and keyframe points and eq. (4).
+struct StageTimes {
+  double cartesian = 0, detect = 0, describe = 0, align_prep = 0, match = 0, clique = 0, svd = 0, refine = 0;
+  double total() const { return cartesian + detect + describe + align_prep + match + clique + svd + refine; }
+};
+
+struct OdometryStep {
+  StampNs stamp = 0;           ///< the scan's reference time
+  mrpt::math::TPose2D pose;    ///< radar pose in the first scan's frame
+  mrpt::math::TPose2D motion;  ///< T_previous_current
+  BodyVelocity velocity;       ///< body-frame velocity estimate after this scan
+  TrackingStatus status = TrackingStatus::Initialised;
+  int keypoints = 0, matches = 0, inliers = 0;
+  bool clique_exact = true;
+  bool new_keyframe = false;
+  StageTimes times;
+};
+
+class RadarOdometry {
+ public:
+  explicit RadarOdometry(const OdometryParams& params = {});
+  ~RadarOdometry();
+  RadarOdometry(const RadarOdometry&) = delete;
+  RadarOdometry& operator=(const RadarOdometry&) = delete;
+
+  /// Tracks one scan; scans must come in time order.
+  OdometryStep process(const CObservationRadarScan& scan);
+
+  /// Every processed scan's pose at its reference time.
+  const Trajectory& trajectory() const;
+  const OdometryParams& params() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace radarslam

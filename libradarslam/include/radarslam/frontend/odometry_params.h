@@ -1,0 +1,50 @@
+#pragma once
+// Every parameter of the radar odometry (front end), with defaults; config/<sensor>.yaml
+// overrides them under the `cartesian:` and `odometry:` sections.
+#include <string>
+
+#include "radarslam/frontend/keyframe_policy.h"
+#include "radarslam/frontend/keypoints.h"
+#include "radarslam/frontend/patch_alignment.h"
+#include "radarslam/frontend/pose_refiner.h"
+#include "radarslam/frontend/radius_matcher.h"
+#include "radarslam/radar/cartesian.h"
+
+namespace radarslam {
+
+class YamlParams;
+
+struct OutlierParams {
+  bool max_clique = true;                ///< eq. (3) graph + maximum clique; false = all matches (ablation)
+  double delta_c_m = 0.75;               ///< eq. (3) threshold (authors: 3 px at 0.25 m/px)
+  std::string consistency = "distance";  ///< distance (rigid invariant) | displacement (eq. (3) as printed)
+  int max_matches = 500;                 ///< best-descriptor matches fed to the graph
+  long max_clique_steps = 20000;         ///< branch-and-bound budget
+  double inlier_gate_m = 1.0;            ///< after the SVD pose, matches within this are inliers for eq. (4)
+};
+
+struct TrackingParams {
+  int min_inliers = 10;         ///< fewer -> tracking lost for this scan
+  double min_range_m = 3.0;     ///< keypoints closer than this are ignored (sensor/vehicle clutter)
+  double max_speed_mps = 40.0;  ///< estimates implying more are rejected as failures
+  bool motion_compensation = true;
+  bool acceleration_aware = true;  ///< per-scan velocity from neighbouring pairs, not the pair's mean
+  int compensation_passes = 2;     ///< re-compensate with the refined velocity and refine again
+};
+
+struct OdometryParams {
+  CartesianParams cartesian;
+  KeypointParams keypoints;
+  MatchParams matching;
+  OutlierParams outliers;
+  PatchAlignParams patch_alignment;
+  RefineParams refine;
+  KeyframeParams keyframes;
+  TrackingParams tracking;
+};
+
+/// Overrides from `cartesian:` and `odometry:` {keypoints, matching, outliers, refine, keyframes,
+/// tracking} of `yaml`. Throws InputError for bad values.
+void loadParams(const YamlParams& yaml, OdometryParams& params);
+
+}  // namespace radarslam

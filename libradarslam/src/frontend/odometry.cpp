@@ -1,0 +1,321 @@
+#include "radarslam/frontend/odometry.h"
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "radarslam/core/log.h"
+#include "radarslam/frontend/consistency_graph.h"
+#include "radarslam/frontend/max_clique.h"
+#include "radarslam/frontend/svd_pose.h"
+
+namespace radarslam {
+
+const char* toString(TrackingStatus s) {
+  switch (s) {
+    case TrackingStatus::Initialised:
+      return "initialised";
+    case TrackingStatus::Tracking:
+      return "tracking";
+    case TrackingStatus::Lost:
+      return "lost";
+    case TrackingStatus::Recovered:
+      return "recovered";
+  }
+  return "?";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+/// a + t (a - b) per component (t = 0.5 with b = a's successor: the midpoint; t = -0.5:
+/// extrapolation half a step beyond a away from b).
+BodyVelocity blend(const BodyVelocity& a, const BodyVelocity& b, double t) {
+  return {a.vx + t * (b.vx - a.vx), a.vy + t * (b.vy - a.vy), a.omega + t * (b.omega - a.omega)};
+}
+
+/// A keyframe point seen in the current scan: where (as imaged) and when (firing time offset).
+struct Observation {
+  int ref_index = -1;
+  Eigen::Vector2d raw;
+  double dt = 0.0;
+};
+
+/// One scan's features: as imaged (raw) and moved to the reference time (features.xy).
+struct Frame {
+  StampNs stamp = 0;
+  mrpt::math::TPose2D pose;
+  std::vector<cv::Point2f> pixels;  ///< keypoint positions in the Cartesian image
+  AlignImage align;                 ///< the image prepared for patch alignment
+  std::vector<Eigen::Vector2d> raw;
+  std::vector<double> dt;  ///< firing time of each keypoint relative to the reference time, s
+  FeatureSet features;
+
+  void compensate(const BodyVelocity& v, bool enabled) {
+    features.xy.resize(raw.size());
+    for (std::size_t i = 0; i < raw.size(); ++i)
+      features.xy[i] = enabled ? compensatePoint(raw[i], dt[i], v) : raw[i];
+  }
+};
+
+}  // namespace
+
+struct RadarOdometry::Impl {
+  explicit Impl(const OdometryParams& p) : params(p), converter(p.cartesian), extractor(p.keypoints) {}
+
+  OdometryParams params;
+  PolarToCartesian converter;
+  KeypointExtractor extractor;
+  cv::Mat mask;  ///< excludes the near-range disk
+  Trajectory trajectory;
+
+  bool have_keyframe = false;
+  Frame keyframe;
+  StampNs last_stamp = 0;
+  mrpt::math::TPose2D last_pose;
+  BodyVelocity velocity;
+  bool velocity_known = false;
+  int lost_count = 0;
+
+  Frame makeFrame(const CObservationRadarScan& scan, StageTimes& times) {
+    auto t0 = Clock::now();
+    const cv::Mat image = converter.convert(scan);
+    times.cartesian = msSince(t0);
+    if (mask.size() != image.size()) {
+      mask = cv::Mat(image.size(), CV_8UC1, cv::Scalar(255));
+      const cv::Point2f c = converter.metresToPixel(0, 0);
+      const int r = static_cast<int>(std::ceil(params.tracking.min_range_m / params.cartesian.m_per_px));
+      cv::circle(mask, cv::Point(cvRound(c.x), cvRound(c.y)), r, cv::Scalar(0), cv::FILLED);
+    }
+    t0 = Clock::now();
+    auto points = extractor.detect(image, mask);
+    times.detect = msSince(t0);
+    t0 = Clock::now();
+    ImageKeypoints kps = extractor.describe(image, std::move(points));
+    Frame f;
+    f.stamp = scan.refStampNs();
+    const AzimuthClock clock(scan);
+    f.raw.reserve(kps.points.size());
+    for (const auto& kp : kps.points) {
+      f.pixels.push_back(kp.pt);
+      const cv::Point2d m = converter.pixelToMetres(kp.pt.x, kp.pt.y);
+      f.raw.emplace_back(m.x, m.y);
+      f.dt.push_back(clock.offsetSeconds(std::atan2(m.y, m.x)));
+    }
+    f.features.descriptors = kps.descriptors;
+    f.features.norm_type = kps.norm_type;
+    times.describe = msSince(t0);
+    t0 = Clock::now();
+    if (params.patch_alignment.enabled) f.align = prepareAlignImage(image, params.patch_alignment);
+    times.align_prep = msSince(t0);
+    return f;
+  }
+
+  /// Outlier rejection (eq. (3) + maximum clique) and the SVD pose; returns the inlier set.
+  Correspondences selectInliers(Correspondences matches, OdometryStep& step, mrpt::math::TPose2D& svd_pose) {
+    auto t0 = Clock::now();
+    const auto& o = params.outliers;
+    if (static_cast<int>(matches.size()) > o.max_matches) {
+      std::stable_sort(matches.begin(), matches.end(), [](const Correspondence& a, const Correspondence& b) {
+        return a.descriptor_distance < b.descriptor_distance;
+      });
+      matches.resize(o.max_matches);
+    }
+    Correspondences clique;
+    if (o.max_clique) {
+      const DenseGraph g =
+          buildConsistencyGraph(matches, o.delta_c_m,
+                                o.consistency == "displacement" ? ConsistencyTest::DisplacementLength
+                                                                : ConsistencyTest::PairwiseDistance);
+      const CliqueResult c = maximumClique(g, o.max_clique_steps);
+      step.clique_exact = c.exact;
+      for (int v : c.vertices) clique.push_back(matches[v]);
+    } else {
+      clique = matches;
+    }
+    step.times.clique = msSince(t0);
+    t0 = Clock::now();
+    Correspondences inliers;
+    if (const auto pose = fitPoseSvd(clique); pose && static_cast<int>(clique.size()) >= 2) {
+      svd_pose = *pose;
+      // Matches the clique missed but the SVD pose explains also join the refinement.
+      const double gate2 = o.inlier_gate_m * o.inlier_gate_m;
+      const double c = std::cos(pose->phi), s = std::sin(pose->phi);
+      for (const auto& m : matches) {
+        const Eigen::Vector2d pred(c * m.cur.x() - s * m.cur.y() + pose->x,
+                                   s * m.cur.x() + c * m.cur.y() + pose->y);
+        if ((pred - m.ref).squaredNorm() < gate2) inliers.push_back(m);
+      }
+      if (!o.max_clique) inliers = clique;  // ablation: no outlier rejection at all
+    }
+    step.times.svd = msSince(t0);
+    return inliers;
+  }
+
+  OdometryStep process(const CObservationRadarScan& scan) {
+    OdometryStep step;
+    Frame f = makeFrame(scan, step.times);
+    step.stamp = f.stamp;
+    step.keypoints = static_cast<int>(f.raw.size());
+    const bool mc = params.tracking.motion_compensation;
+
+    if (!have_keyframe) {
+      f.compensate({}, mc);
+      keyframe = std::move(f);
+      have_keyframe = true;
+      last_stamp = step.stamp;
+      last_pose = step.pose = {0, 0, 0};
+      step.status = TrackingStatus::Initialised;
+      step.new_keyframe = true;
+      trajectory.push_back({step.stamp, step.pose});
+      return step;
+    }
+
+    const double dt = toSeconds(step.stamp - last_stamp);
+    const mrpt::math::TPose2D predicted_delta =
+        velocity_known ? twistToPose(velocity, dt) : mrpt::math::TPose2D();
+    const mrpt::math::TPose2D kf_to_last = last_pose - keyframe.pose;  // T_k_prev
+    const mrpt::math::TPose2D prior = kf_to_last + predicted_delta;
+    const bool wide = !velocity_known || lost_count > 0;
+    const double radius = wide ? params.matching.init_radius_m : params.matching.radius_m;
+
+    BodyVelocity v = velocity_known ? velocity : BodyVelocity{};
+    BodyVelocity cur_compensation = v;
+    f.compensate(v, mc);
+    auto t0 = Clock::now();
+    const Correspondences matches =
+        matchWithinRadius(f.features, keyframe.features, prior, radius, params.matching);
+    step.times.match = msSince(t0);
+    step.matches = static_cast<int>(matches.size());
+
+    mrpt::math::TPose2D svd_pose;
+    Correspondences inliers = selectInliers(matches, step, svd_pose);
+    step.inliers = static_cast<int>(inliers.size());
+
+    bool ok = step.inliers >= params.tracking.min_inliers;
+    mrpt::math::TPose2D T = svd_pose;  // T_k_t
+    t0 = Clock::now();
+    const bool kf_is_last = keyframe.stamp == last_stamp;
+    const bool accel = params.tracking.acceleration_aware && velocity_known;
+    const AzimuthClock clock(scan);
+    auto observe = [&](int ref_index, cv::Point2f pixel) {
+      const cv::Point2d xy = converter.pixelToMetres(pixel.x, pixel.y);
+      return Observation{ref_index, {xy.x, xy.y}, clock.offsetSeconds(std::atan2(xy.y, xy.x))};
+    };
+    // Motion compensation (ours, not the paper's), re-done with each refined estimate. Each scan is
+    // compensated with its velocity at its own reference time: the keyframe (when it is the
+    // previous scan) with the mean of the pair velocities before and after it, the current scan
+    // with the latest pair velocity extrapolated by the change since the previous pair.
+    auto currentVelocity = [&](const BodyVelocity& pair) {
+      return accel ? blend(pair, velocity, -0.5) : pair;
+    };
+    auto refine = [&](const std::vector<Observation>& obs) {  // eq. (4), with compensation passes
+      const int passes = mc ? std::max(1, params.tracking.compensation_passes) : 1;
+      for (int pass = 0; pass < passes; ++pass) {
+        if (pass > 0 && kf_is_last) keyframe.compensate(velocity_known ? blend(velocity, v, 0.5) : v, mc);
+        Correspondences c(obs.size());
+        const BodyVelocity vc = currentVelocity(v);
+        for (std::size_t i = 0; i < obs.size(); ++i) {
+          c[i].cur = mc ? compensatePoint(obs[i].raw, obs[i].dt, vc) : obs[i].raw;
+          c[i].ref = keyframe.features.xy[obs[i].ref_index];
+        }
+        T = refinePose(c, T, params.refine).pose;
+        v = twistFromDelta((keyframe.pose + T) - last_pose, dt);
+      }
+    };
+    t0 = Clock::now();
+    if (ok) {
+      // Descriptor inliers, each moved to where the keyframe's patch really lies (sub-pixel).
+      std::vector<Observation> obs;
+      std::vector<char> observed(keyframe.raw.size(), 0);
+      for (const auto& m : inliers) {
+        cv::Point2f px = f.pixels[m.cur_index];
+        if (params.patch_alignment.enabled) {
+          const auto a =
+              alignPatch(keyframe.align, keyframe.pixels[m.ref_index], f.align, px, params.patch_alignment);
+          if (a.ok) px = a.position;
+        }
+        obs.push_back(observe(m.ref_index, px));
+        observed[m.ref_index] = 1;
+      }
+      refine(obs);
+      if (params.patch_alignment.enabled && params.patch_alignment.track_keyframe_points) {
+        // Every other keyframe point (a map point of eq. (4)) is looked for where the estimate
+        // puts it in this image, and kept if its patch aligns and it agrees with the estimate.
+        const mrpt::math::TPose2D Tinv = mrpt::math::TPose2D(0, 0, 0) - T;
+        const BodyVelocity vc = currentVelocity(v);
+        const double gate2 = params.patch_alignment.track_gate_m * params.patch_alignment.track_gate_m;
+        PatchAlignParams pa = params.patch_alignment;
+        pa.search_radius_px = pa.track_search_radius_px;
+        const std::size_t before = obs.size();
+        for (std::size_t j = 0; j < keyframe.raw.size(); ++j) {
+          if (observed[j]) continue;
+          const auto q = Tinv.composePoint({keyframe.features.xy[j].x(), keyframe.features.xy[j].y()});
+          const Eigen::Vector2d raw =
+              mc ? decompensatePoint({q.x, q.y}, clock.offsetSeconds(std::atan2(q.y, q.x)), vc)
+                 : Eigen::Vector2d(q.x, q.y);
+          const auto a = alignPatch(keyframe.align, keyframe.pixels[j], f.align,
+                                    converter.metresToPixel(raw.x(), raw.y()), pa);
+          if (!a.ok) continue;
+          Observation o = observe(static_cast<int>(j), a.position);
+          const Eigen::Vector2d cur = mc ? compensatePoint(o.raw, o.dt, vc) : o.raw;
+          const auto pred = T.composePoint({cur.x(), cur.y()});
+          if ((Eigen::Vector2d(pred.x, pred.y) - keyframe.features.xy[j]).squaredNorm() < gate2)
+            obs.push_back(o);
+        }
+        if (obs.size() > before) refine(obs);
+      }
+      step.inliers = static_cast<int>(obs.size());
+      const double speed = std::hypot(v.vx, v.vy);
+      if (!(dt > 0) || speed > params.tracking.max_speed_mps) ok = false;
+    }
+    cur_compensation = currentVelocity(v);
+    step.times.refine = msSince(t0);
+
+    if (ok) {
+      step.status = lost_count > 0 ? TrackingStatus::Recovered : TrackingStatus::Tracking;
+      lost_count = 0;
+      step.pose = keyframe.pose + T;  // eq. (2): C_t = C_k T_tk^-1, with T = T_tk^-1
+      velocity = v;
+      velocity_known = true;
+      f.compensate(cur_compensation, mc);
+      if (needNewKeyframe(params.keyframes, T, step.inliers)) {
+        f.pose = step.pose;
+        keyframe = std::move(f);
+        step.new_keyframe = true;
+      }
+    } else {
+      // Tracking loss: constant-velocity prediction, re-initialise on this scan.
+      step.status = TrackingStatus::Lost;
+      ++lost_count;
+      step.pose = last_pose + predicted_delta;
+      f.pose = step.pose;
+      f.compensate(velocity, mc && velocity_known);
+      keyframe = std::move(f);
+      step.new_keyframe = true;
+      logger().logFmt(mrpt::system::LVL_WARN, "odometry: tracking lost at %.3f s (%d matches, %d inliers)",
+                      toSeconds(step.stamp), step.matches, step.inliers);
+    }
+    step.motion = step.pose - last_pose;
+    step.velocity = velocity;
+    last_pose = step.pose;
+    last_stamp = step.stamp;
+    trajectory.push_back({step.stamp, step.pose});
+    return step;
+  }
+};
+
+RadarOdometry::RadarOdometry(const OdometryParams& params) : impl_(std::make_unique<Impl>(params)) {}
+RadarOdometry::~RadarOdometry() = default;
+OdometryStep RadarOdometry::process(const CObservationRadarScan& scan) { return impl_->process(scan); }
+const Trajectory& RadarOdometry::trajectory() const { return impl_->trajectory; }
+const OdometryParams& RadarOdometry::params() const { return impl_->params; }
+
+}  // namespace radarslam
