@@ -37,6 +37,16 @@ class Search {
   Search(const DenseGraph& g, long max_steps) : g_(g), max_steps_(max_steps) {}
 
   void run() {
+    // Greedy start (highest-degree-first, which is vertex order here): a valid answer even if the
+    // budget runs out before the first leaf, and an initial bound for the search.
+    Bits cand(g_.words(), 0);
+    for (int v = 0; v < g_.size(); ++v) cand[v >> 6] |= std::uint64_t{1} << (v & 63);
+    for (int v = 0; v < g_.size(); ++v) {
+      if (!((cand[v >> 6] >> (v & 63)) & 1u)) continue;
+      best.push_back(v);
+      const std::uint64_t* nv = g_.row(v);
+      for (int w = 0; w < g_.words(); ++w) cand[w] &= nv[w];
+    }
     Bits all(g_.words(), 0);
     for (int v = 0; v < g_.size(); ++v) all[v >> 6] |= std::uint64_t{1} << (v & 63);
     expand(all);

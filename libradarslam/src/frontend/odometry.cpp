@@ -296,10 +296,15 @@ struct RadarOdometry::Impl {
       step.status = TrackingStatus::Lost;
       ++lost_count;
       step.pose = last_pose + predicted_delta;
-      f.pose = step.pose;
-      f.compensate(velocity, mc && velocity_known);
-      keyframe = std::move(f);
-      step.new_keyframe = true;
+      // Re-initialise on this scan, unless it is too poor to track against (e.g. blank) and the
+      // old keyframe is recent: then the next scan is matched against the old keyframe.
+      const bool poor = step.keypoints < 2 * params.tracking.min_inliers;
+      if (!poor || lost_count > params.tracking.keep_keyframe_when_lost) {
+        f.pose = step.pose;
+        f.compensate(velocity, mc && velocity_known);
+        keyframe = std::move(f);
+        step.new_keyframe = true;
+      }
       logger().logFmt(mrpt::system::LVL_WARN, "odometry: tracking lost at %.3f s (%d matches, %d inliers)",
                       toSeconds(step.stamp), step.matches, step.inliers);
     }

@@ -61,6 +61,7 @@ void loadParams(const YamlParams& yaml, OdometryParams& p) {
   t.get("min_inliers", p.tracking.min_inliers);
   t.get("min_range_m", p.tracking.min_range_m);
   t.get("max_speed_mps", p.tracking.max_speed_mps);
+  t.get("keep_keyframe_when_lost", p.tracking.keep_keyframe_when_lost);
   t.get("motion_compensation", p.tracking.motion_compensation);
   t.get("acceleration_aware", p.tracking.acceleration_aware);
   t.get("compensation_passes", p.tracking.compensation_passes);

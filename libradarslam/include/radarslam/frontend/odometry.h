@@ -5,8 +5,10 @@
 //   SVD pose -> refinement against the keyframe's points (eq. (4)) -> C_t = C_k T_tk^-1 (eq. (2))
 //   -> keyframe decision.
 // A scan that cannot be tracked never aborts the run: its pose is predicted with constant
-// velocity, it becomes the new keyframe (re-initialisation) and the next scan is matched against
-// it with the wide initial search radius.
+// velocity and it becomes the new keyframe (re-initialisation) - unless it has too few keypoints
+// to track against (a blank scan), in which case the old keyframe is kept for up to
+// tracking.keep_keyframe_when_lost scans. After a loss the next scan is matched with the wide
+// initial search radius.
 #include <memory>
 
 #include "radarslam/core/trajectory.h"

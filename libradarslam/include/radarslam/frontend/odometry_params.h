@@ -24,9 +24,10 @@ struct OutlierParams {
 };
 
 struct TrackingParams {
-  int min_inliers = 10;         ///< fewer -> tracking lost for this scan
-  double min_range_m = 3.0;     ///< keypoints closer than this are ignored (sensor/vehicle clutter)
-  double max_speed_mps = 40.0;  ///< estimates implying more are rejected as failures
+  int min_inliers = 10;             ///< fewer -> tracking lost for this scan
+  double min_range_m = 3.0;         ///< keypoints closer than this are ignored (sensor/vehicle clutter)
+  double max_speed_mps = 40.0;      ///< estimates implying more are rejected as failures
+  int keep_keyframe_when_lost = 2;  ///< consecutive lost scans with too few keypoints that keep the keyframe
   bool motion_compensation = true;
   bool acceleration_aware = true;  ///< per-scan velocity from neighbouring pairs, not the pair's mean
   int compensation_passes = 2;     ///< re-compensate with the refined velocity and refine again
