@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include <radarslam/core/errors.h>
+#include <radarslam/core/yaml_params.h>
 #include <radarslam/radar/cartesian.h>
 
 #include "synthetic_scan.h"
@@ -224,6 +225,18 @@ TEST(Cartesian, ConcurrentConversionsAgree) {
     });
   for (auto& th : threads) th.join();
   for (int t = 0; t < 4; ++t) EXPECT_EQ(mismatches[t], 0) << "thread " << t;
+}
+
+TEST(Cartesian, ParamsFromYaml) {
+  CartesianParams p;
+  const auto yaml = YamlParams::fromText("size_px: 1000\nm_per_px: 0.2\nfixed_point_maps: false\n");
+  loadParams(yaml, p);
+  EXPECT_EQ(p.size_px, 1000);
+  EXPECT_DOUBLE_EQ(p.m_per_px, 0.2);
+  EXPECT_FALSE(p.fixed_point_maps);
+  EXPECT_EQ(p.rows(), 1000);  // height defaults to the width
+  EXPECT_NO_THROW(yaml.rejectUnknownKeys());
+  EXPECT_THROW(loadParams(YamlParams::fromText("size_px: big\n"), p), InputError);
 }
 
 TEST(Cartesian, RejectsBadParamsAndScans) {

@@ -7,80 +7,84 @@ namespace radarslam {
 
 namespace {
 
+// The signal reduced to its turning points: every local-maximum run, every local-minimum run and
+// the first and last runs (a run = consecutive equal samples). Prominence only depends on these:
+// a base is a minimum of the signal, reached at a local minimum or an end, and the nearest
+// strictly higher sample on a side lies on an ascent whose top is a local maximum or an end that
+// is higher still. Speckled radar rows have ~10x fewer turning points than samples.
+struct Extremum {
+  float value;
+  std::uint32_t first, last;  // sample range of the run
+  bool is_peak;               // local-maximum run that is not at an end of the signal
+};
+
 // Per-thread scratch buffers: findPeaks runs once per azimuth, 400 times per scan.
 struct Scratch {
-  std::vector<std::uint32_t> candidates;
+  std::vector<Extremum> ext;
   std::vector<float> base_left, base_right;
-  std::vector<std::pair<std::uint32_t, float>> stack;  // (index, min since the entry below)
+  std::vector<std::pair<float, float>> stack;  // (value, min since the entry below)
   std::vector<std::uint32_t> priority;
   std::vector<char> removed;
 };
 
-// base[i] = min of x over (g, i], g = the nearest index left of i with x[g] > x[i] (or -1):
-// one monotonic-stack pass. Entries hold strictly decreasing values; each keeps the minimum of
-// the samples between it and the entry below, so popping merges the minima of covered spans.
 template <typename T>
-void leftBases(std::span<const T> x, std::vector<std::pair<std::uint32_t, float>>& stack,
-               std::vector<float>& base) {
-  stack.clear();
-  base.resize(x.size());
-  for (std::uint32_t i = 0; i < x.size(); ++i) {
-    float m = static_cast<float>(x[i]);
-    while (!stack.empty() && x[stack.back().first] <= x[i]) {
-      m = std::min(m, stack.back().second);
-      stack.pop_back();
-    }
-    base[i] = m;
-    stack.emplace_back(i, m);
+void turningPoints(std::span<const T> x, std::vector<Extremum>& ext) {
+  ext.clear();
+  const auto n = static_cast<std::uint32_t>(x.size());
+  int prev_dir = 0;
+  std::uint32_t run_start = 0;
+  for (std::uint32_t i = 1; i < n; ++i) {
+    if (x[i] == x[i - 1]) continue;  // the run goes on
+    const int dir = x[i] > x[i - 1] ? 1 : -1;
+    const auto v = static_cast<float>(x[i - 1]);
+    if (run_start == 0)
+      ext.push_back({v, 0, i - 1, false});  // first run: never a peak, still a base/blocker
+    else if (prev_dir != dir)
+      ext.push_back({v, run_start, i - 1, prev_dir > 0});  // local max (up then down) or min
+    prev_dir = dir;
+    run_start = i;
   }
+  ext.push_back({static_cast<float>(x[n - 1]), run_start, n - 1, false});  // last run
 }
 
-template <typename T>
-void rightBases(std::span<const T> x, std::vector<std::pair<std::uint32_t, float>>& stack,
-                std::vector<float>& base) {
+// base[e] = min of the values over (g, e], g = the nearest element before e that is strictly
+// higher than e (or the start): one monotonic-stack pass. Entries hold strictly decreasing
+// values; each keeps the minimum since the entry below it, so popping merges covered spans.
+template <typename It>
+void bases(It begin, It end, std::vector<std::pair<float, float>>& stack, float* base, int step) {
   stack.clear();
-  base.resize(x.size());
-  for (std::uint32_t i = static_cast<std::uint32_t>(x.size()); i-- > 0;) {
-    float m = static_cast<float>(x[i]);
-    while (!stack.empty() && x[stack.back().first] <= x[i]) {
+  for (It it = begin; it != end; ++it, base += step) {
+    float m = it->value;
+    while (!stack.empty() && stack.back().first <= it->value) {
       m = std::min(m, stack.back().second);
       stack.pop_back();
     }
-    base[i] = m;
-    stack.emplace_back(i, m);
+    *base = m;
+    stack.emplace_back(it->value, m);
   }
 }
 
 template <typename T>
 void findPeaksImpl(std::span<const T> x, const FindPeaksParams& params, std::vector<Peak>& out) {
   out.clear();
-  const std::size_t n = x.size();
-  if (n < 3) return;
+  if (x.size() < 3) return;
   thread_local Scratch s;
+  turningPoints(x, s.ext);
+  const std::size_t m = s.ext.size();
+  if (m < 3) return;
 
-  // Local maxima, plateaus reduced to their middle sample (scipy's _local_maxima_1d).
-  s.candidates.clear();
-  for (std::size_t i = 1; i + 1 < n;) {
-    if (x[i - 1] < x[i]) {
-      std::size_t ahead = i + 1;
-      while (ahead + 1 < n && x[ahead] == x[i]) ++ahead;
-      if (x[ahead] < x[i]) {
-        s.candidates.push_back(static_cast<std::uint32_t>((i + ahead - 1) / 2));
-        i = ahead;
-        continue;
-      }
-    }
-    ++i;
-  }
-  if (s.candidates.empty()) return;
-
-  // Prominence = height above the higher base.
-  leftBases(x, s.stack, s.base_left);
-  rightBases(x, s.stack, s.base_right);
-  for (const std::uint32_t i : s.candidates) {
-    const float h = static_cast<float>(x[i]);
-    const float prominence = h - std::max(s.base_left[i], s.base_right[i]);
-    if (prominence >= params.min_prominence) out.push_back(Peak{i, h, prominence});
+  // Prominence = height above the higher of the two bases.
+  s.base_left.resize(m);
+  s.base_right.resize(m);
+  bases(s.ext.begin(), s.ext.end(), s.stack, s.base_left.data(), 1);
+  bases(s.ext.rbegin(), s.ext.rend(), s.stack, s.base_right.data() + m - 1, -1);
+  for (std::size_t e = 0; e < m; ++e) {
+    const Extremum& ex = s.ext[e];
+    if (!ex.is_peak) continue;
+    const float prominence = ex.value - std::max(s.base_left[e], s.base_right[e]);
+    // A plateau's peak is its middle sample (scipy: the left of two middles).
+    if (prominence >= params.min_prominence)
+      out.push_back(Peak{(ex.first + ex.last) / 2, ex.value, prominence});
   }
 
   // Minimum distance: highest peaks first, each removes lower ones within min_distance.

@@ -14,7 +14,8 @@
 //    peak removes all lower-priority peaks closer than `min_distance` samples (so kept peaks are
 //    >= min_distance apart, scipy's definition; MATLAB drops peaks at distance <= MinPeakDistance).
 //
-// Cost O(n + k log k) for n samples and k peaks (bases from a monotonic stack, not per-peak scans).
+// Cost O(n + k log k) for n samples and k peaks: one pass reduces the signal to its turning points,
+// monotonic-stack passes over those give every base (no per-peak scans).
 #include <cstdint>
 #include <span>
 #include <vector>

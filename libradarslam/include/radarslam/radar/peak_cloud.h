@@ -10,6 +10,9 @@
 //  - sigma is the population standard deviation (N normalisation). With N - 1 (MATLAB's std
 //    default) an azimuth with exactly two peaks could never keep either (the higher one is only
 //    1/sqrt(2) sigma above the mean); with N it keeps the higher one. A single peak is kept.
+//    As in the paper, an azimuth whose top peaks tie (e.g. several saturated at 255 plus lower
+//    ones) can have mu + sigma above every peak and keep nothing; this never happened on the
+//    4400 azimuths of the Oxford tiny sample with the default parameters (measured).
 //  - A point is at range range_offset_m + bin * range_resolution_m along its azimuth's own angle.
 #include <cstdint>
 #include <vector>
