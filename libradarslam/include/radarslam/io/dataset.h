@@ -22,6 +22,10 @@ enum class DatasetKind { Oxford, MulRanOxfordForm, MulRanPolar, Boreas, Radiate,
 
 std::string toString(DatasetKind kind);
 
+/// The dataset kind of a directory (or .rawlog file) from its layout alone, without reading
+/// scans. Throws InputError(path, ...) for a missing/empty path or an unknown layout.
+DatasetKind detectDatasetKind(const std::filesystem::path& path);
+
 struct ReaderOptions {
   /// Overrides of the sensor geometry where a format does not carry it (0 = use the default
   /// for the detected dataset/sensor).
@@ -53,16 +57,20 @@ class DatasetReader {
   virtual const Trajectory& groundTruth() const = 0;
   bool hasGroundTruth() const { return !groundTruth().empty(); }
   /// Ground-truth pose at `t` (interpolated), nullopt outside the ground truth's span.
-  std::optional<mrpt::math::TPose2D> groundTruthAt(StampNs t) const { return interpolatePose(groundTruth(), t); }
+  std::optional<mrpt::math::TPose2D> groundTruthAt(StampNs t) const {
+    return interpolatePose(groundTruth(), t);
+  }
 };
 
 /// Detects the dataset kind from the directory layout (or a .rawlog file) and opens it.
 /// Throws InputError(path, "unknown dataset layout: ...") naming what was expected.
-std::unique_ptr<DatasetReader> openDataset(const std::filesystem::path& path, const ReaderOptions& options = {});
+std::unique_ptr<DatasetReader> openDataset(const std::filesystem::path& path,
+                                           const ReaderOptions& options = {});
 
 /// Decodes one scan file (an Oxford/Boreas/MulRan/RADIATE polar PNG, or a MulRan ray CSV) on
 /// its own, detecting the format from the file and the dataset directory around it.
-CObservationRadarScan::Ptr readScanFile(const std::filesystem::path& scan_file, const ReaderOptions& options = {});
+CObservationRadarScan::Ptr readScanFile(const std::filesystem::path& scan_file,
+                                        const ReaderOptions& options = {});
 
 /// Iterates a dataset in time order. Every scan is checked (decodes, consistent geometry, its
 /// reference time later than the previous scan's). With skip_bad_scans a bad scan is logged as a

@@ -1,0 +1,79 @@
+// Oxford Radar RobotCar: radar/<t_us>.png (stamp = first azimuth), radar.timestamps,
+// gt/radar_odometry.csv (FORMATS.md section 1).
+#include <string>
+
+#include "polar_png.h"
+#include "radarslam/core/errors.h"
+#include "radarslam/core/log.h"
+#include "radarslam/io/ground_truth.h"
+#include "readers.h"
+#include "text_util.h"
+
+namespace radarslam::io_detail {
+
+namespace {
+
+// radar.timestamps: "<t_us> <flag>" per line, strictly increasing.
+std::vector<IndexEntry> readRadarTimestamps(const std::filesystem::path& root) {
+  const auto file = root / "radar.timestamps";
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw InputError(file.string(),
+                     "missing radar.timestamps (Oxford layout: radar/*.png + radar.timestamps)");
+  auto in = openText(file, "radar.timestamps");
+  std::vector<IndexEntry> index;
+  std::string line;
+  std::size_t line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (trim(line).empty()) continue;
+    const std::string where = lineWhere(file, line_no);
+    const auto fields = split(trim(line), ' ');
+    if (fields.empty() || fields.size() > 2)
+      throw InputError(where, "malformed line: expected '<timestamp_us> <flag>'");
+    IndexEntry e;
+    e.stamp = parseInt(fields[0], where, "timestamp") * kNsPerUs;
+    e.file = root / "radar" / (std::string(fields[0]) + ".png");
+    if (!index.empty() && e.stamp <= index.back().stamp)
+      throw InputError(where, "timestamps are not increasing (" + std::string(fields[0]) + " after " +
+                                  std::to_string(index.back().stamp / kNsPerUs) + ")");
+    index.push_back(std::move(e));
+  }
+  if (index.empty()) throw InputError(file.string(), "no timestamps");
+  return index;
+}
+
+class OxfordReader : public FileSequenceReader {
+ public:
+  OxfordReader(const std::filesystem::path& root, const ReaderOptions& o, OpenFlags flags)
+      : FileSequenceReader(DatasetKind::Oxford, root, readRadarTimestamps(root)) {
+    format_.range_resolution_m = o.range_resolution_m > 0 ? o.range_resolution_m : kOxfordResolution;
+    // The SDK and yeti put bin k at (k + 0.5) * resolution: the offset is half a bin.
+    format_.range_offset_m = o.range_offset_m.value_or(format_.range_resolution_m / 2);
+    const auto gt = root / "gt" / "radar_odometry.csv";
+    if (flags.load_ground_truth && std::filesystem::exists(gt)) ground_truth_ = readOxfordGroundTruth(gt);
+  }
+  std::string sensorName() const override { return "Navtech CTS350-X"; }
+  CObservationRadarScan::Ptr readScan(std::size_t i) const override {
+    auto scan = decodeOxfordStyle(readImage(i), entry(i).file, format_);
+    if (scan->azimuth_stamps_ns.front() != entry(i).stamp)
+      throw InputError(entry(i).file.string(),
+                       "first azimuth timestamp " +
+                           std::to_string(scan->azimuth_stamps_ns.front() / kNsPerUs) +
+                           " differs from the file's timestamp (Oxford stamps scans at the "
+                           "first azimuth)");
+    return scan;
+  }
+
+ private:
+  OxfordStyleFormat format_;
+};
+
+}  // namespace
+
+std::unique_ptr<DatasetReader> openOxford(const std::filesystem::path& root, const ReaderOptions& o,
+                                          OpenFlags f) {
+  return std::make_unique<OxfordReader>(root, o, f);
+}
+
+}  // namespace radarslam::io_detail

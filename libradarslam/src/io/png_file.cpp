@@ -1,0 +1,111 @@
+#include "png_file.h"
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <opencv2/imgcodecs.hpp>
+#include <span>
+#include <string>
+
+#include "radarslam/core/errors.h"
+#include "text_util.h"
+
+namespace radarslam::io_detail {
+
+namespace {
+
+constexpr std::array<unsigned char, 8> kSignature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+
+std::uint32_t be32(const unsigned char* p) {
+  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
+}
+
+// CRC-32 as specified by PNG (ISO 3309 polynomial), table-driven.
+std::uint32_t crc32(std::span<const unsigned char> data) {
+  static const auto table = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t n = 0; n < 256; ++n) {
+      std::uint32_t c = n;
+      for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xedb88320u ^ (c >> 1) : c >> 1;
+      t[n] = c;
+    }
+    return t;
+  }();
+  std::uint32_t c = 0xffffffffu;
+  for (unsigned char b : data) c = table[(c ^ b) & 0xffu] ^ (c >> 8);
+  return c ^ 0xffffffffu;
+}
+
+void checkSignature(std::span<const unsigned char> bytes, const std::filesystem::path& file) {
+  if (bytes.size() < kSignature.size() ||
+      std::memcmp(bytes.data(), kSignature.data(), kSignature.size()) != 0)
+    throw InputError(file.string(), "not a PNG file (bad signature)");
+}
+
+// Walks all chunks: each must fit in the file and have a correct CRC; IHDR first; the file ends
+// right after IEND. Returns the IHDR size.
+PngSize checkChunks(std::span<const unsigned char> bytes, const std::filesystem::path& file) {
+  checkSignature(bytes, file);
+  std::size_t pos = kSignature.size();
+  PngSize size;
+  bool first = true;
+  while (true) {
+    if (pos + 12 > bytes.size())
+      throw InputError(file.string(), "truncated PNG (file ends inside a chunk header, no IEND chunk)");
+    const std::uint32_t len = be32(&bytes[pos]);
+    const unsigned char* type = &bytes[pos + 4];
+    if (len > bytes.size() || pos + 12 + len > bytes.size())
+      throw InputError(file.string(), "truncated PNG (a chunk extends past the end of the file)");
+    const std::string type_name(reinterpret_cast<const char*>(type), 4);
+    const std::uint32_t stored_crc = be32(&bytes[pos + 8 + len]);
+    if (crc32(bytes.subspan(pos + 4, len + 4)) != stored_crc)
+      throw InputError(file.string(), "corrupt PNG (CRC mismatch in chunk '" + type_name + "' at byte " +
+                                          std::to_string(pos) + ")");
+    if (first) {
+      if (type_name != "IHDR" || len < 8)
+        throw InputError(file.string(), "corrupt PNG (first chunk is not IHDR)");
+      size.width = static_cast<int>(be32(type + 4));
+      size.height = static_cast<int>(be32(type + 8));
+      first = false;
+    }
+    pos += 12 + len;
+    if (type_name == "IEND") {
+      if (pos != bytes.size()) throw InputError(file.string(), "corrupt PNG (data after the IEND chunk)");
+      return size;
+    }
+  }
+}
+
+}  // namespace
+
+PngSize readPngSize(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string(), "cannot open file (missing or unreadable)");
+  std::array<unsigned char, 24> head{};
+  in.read(reinterpret_cast<char*>(head.data()), head.size());
+  if (in.gcount() != static_cast<std::streamsize>(head.size())) {
+    checkSignature(std::span<const unsigned char>(head.data(), static_cast<std::size_t>(in.gcount())), file);
+    throw InputError(file.string(), "truncated PNG (shorter than its header)");
+  }
+  checkSignature(head, file);
+  if (std::memcmp(&head[12], "IHDR", 4) != 0)
+    throw InputError(file.string(), "corrupt PNG (first chunk is not IHDR)");
+  return {static_cast<int>(be32(&head[16])), static_cast<int>(be32(&head[20]))};
+}
+
+cv::Mat readGreyPng(const std::filesystem::path& file) {
+  const std::vector<unsigned char> bytes = readBytes(file);
+  const PngSize size = checkChunks(bytes, file);
+  if (size.width <= 0 || size.height <= 0) throw InputError(file.string(), "PNG has an empty image");
+  cv::Mat img =
+      cv::imdecode(cv::_InputArray(bytes.data(), static_cast<int>(bytes.size())), cv::IMREAD_UNCHANGED);
+  if (img.empty()) throw InputError(file.string(), "PNG could not be decoded (corrupt image data)");
+  if (img.type() != CV_8UC1)
+    throw InputError(file.string(), "expected an 8-bit greyscale PNG, got " + std::to_string(img.channels()) +
+                                        " channel(s) of depth " + std::to_string(img.depth()));
+  if (img.cols != size.width || img.rows != size.height)
+    throw InputError(file.string(), "PNG decoded to a different size than its header says");
+  return img;
+}
+
+}  // namespace radarslam::io_detail

@@ -1,0 +1,78 @@
+// RADIATE (Navtech CTS350-X): Navtech_Polar/<frame>.png, 576 rows = range bins x 400 columns =
+// azimuths (column 0 = 0 deg), 0.173611 m/bin, one time per frame in Navtech_Polar.txt
+// ("Frame: 000001 Time: <s>.<ns>"); no ground truth (FORMATS.md section 4).
+//
+// No per-azimuth times exist. We take the frame time as the MIDDLE of the sweep (so a scan's
+// reference time, the mid-sweep, is exactly the dataset's frame time and the error of this
+// guess is at most half a sweep whichever convention the recorder used) and spread the azimuths
+// evenly over one sweep = the median interval between consecutive frames (robust to dropped frames).
+#include <algorithm>
+#include <string>
+
+#include "polar_png.h"
+#include "radarslam/core/errors.h"
+#include "readers.h"
+#include "text_util.h"
+
+namespace radarslam::io_detail {
+
+namespace {
+
+std::vector<IndexEntry> readFrameTimes(const std::filesystem::path& root) {
+  const auto file = root / "Navtech_Polar.txt";
+  auto in = openText(file, "Navtech_Polar.txt (RADIATE frame times)");
+  std::vector<IndexEntry> index;
+  std::string line;
+  std::size_t line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (trim(line).empty()) continue;
+    const std::string where = lineWhere(file, line_no);
+    const auto f = split(trim(line), ' ');
+    StampNs t = 0;
+    if (f.size() != 4 || f[0] != "Frame:" || f[2] != "Time:" ||
+        !parseSecondsDotFraction(std::string(f[3]), t))
+      throw InputError(where, "malformed line: expected 'Frame: <number> Time: <seconds>.<nanoseconds>'");
+    parseInt(f[1], where, "frame number");
+    if (!index.empty() && t <= index.back().stamp) throw InputError(where, "frame times are not increasing");
+    index.push_back({t, root / "Navtech_Polar" / (std::string(f[1]) + ".png")});
+  }
+  if (index.empty()) throw InputError(file.string(), "no frames");
+  return index;
+}
+
+class RadiateReader : public FileSequenceReader {
+ public:
+  RadiateReader(const std::filesystem::path& root, const ReaderOptions& o)
+      : FileSequenceReader(DatasetKind::Radiate, root, readFrameTimes(root)) {
+    resolution_ = o.range_resolution_m > 0 ? o.range_resolution_m : kRadiateResolution;
+    offset_ = o.range_offset_m.value_or(resolution_ / 2);  // bin centres, as for Oxford's CTS350-X
+    std::vector<StampNs> d;
+    for (std::size_t i = 1; i < index_.size(); ++i) d.push_back(index_[i].stamp - index_[i - 1].stamp);
+    if (!d.empty()) {
+      std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+      sweep_ns_ = d[d.size() / 2];
+    }
+  }
+  std::string sensorName() const override { return "Navtech CTS350-X"; }
+  CObservationRadarScan::Ptr readScan(std::size_t i) const override {
+    const cv::Mat img = readImage(i);
+    return decodeTransposed(
+        img, entry(i).file, resolution_, offset_,
+        evenlySpacedStamps(static_cast<std::size_t>(img.cols), sweep_ns_, entry(i).stamp, 0.5));
+  }
+
+ private:
+  double resolution_ = kRadiateResolution;
+  double offset_ = 0.0;
+  StampNs sweep_ns_ = kNominalSweepNs;
+};
+
+}  // namespace
+
+std::unique_ptr<DatasetReader> openRadiate(const std::filesystem::path& root, const ReaderOptions& o,
+                                           OpenFlags) {
+  return std::make_unique<RadiateReader>(root, o);
+}
+
+}  // namespace radarslam::io_detail
