@@ -127,6 +127,27 @@ TEST(PeakCloud, HonoursTheRangeWindow) {
   EXPECT_EQ(binWindow(scan, 500.0, 0.0).second - binWindow(scan, 500.0, 0.0).first, 0u);
 }
 
+TEST(PeakCloud, SmoothingMergesASplitReturn) {
+  auto scan = makeScan(1, 400, 0.1);
+  auto row = scan.row(0);
+  for (std::uint32_t k = 0; k < 400; ++k) row[k] = static_cast<std::uint8_t>(k % 2 ? 10 : 0);  // speckle
+  const std::uint8_t split[] = {60, 140, 60, 140, 60};  // one target, dip in the middle
+  std::copy(std::begin(split), std::end(split), row.begin() + 200);
+  PeakCloudParams params;
+  params.min_range_m = 0.0;
+  params.min_peak_prominence = 30;
+  params.min_peak_distance_bins = 1;
+  const auto raw = extractPeakCloud(scan, params);
+  ASSERT_EQ(raw.size(), 2u);  // bins 201 and 203
+  EXPECT_NEAR(raw[0].range_m, 20.1, 1e-5);
+  EXPECT_NEAR(raw[1].range_m, 20.3, 1e-5);
+  params.smoothing_bins = 3;
+  const auto smooth = extractPeakCloud(scan, params);
+  ASSERT_EQ(smooth.size(), 1u);  // smoothed: 86.7, 113.3, 86.7 -> one peak in the middle
+  EXPECT_NEAR(smooth[0].range_m, 20.2, 1e-5);
+  EXPECT_NEAR(smooth[0].power, (140 + 60 + 140) / 3.0, 1e-3);
+}
+
 TEST(PeakCloud, ParamsFromYaml) {
   PeakCloudParams p;
   const auto yaml =

@@ -14,7 +14,29 @@ void loadParams(const YamlParams& yaml, PeakCloudParams& params) {
   yaml.get("min_peak_distance_bins", params.min_peak_distance_bins);
   yaml.get("min_range_m", params.min_range_m);
   yaml.get("max_range_m", params.max_range_m);
+  yaml.get("smoothing_bins", params.smoothing_bins);
 }
+
+// Smoothing (PeakCloudParams::smoothing_bins) is off by default. Measured on the 11 Oxford tiny
+// scans (repeatability = share of scan k+1's points within 0.5 m of a point of scan k after the
+// ground-truth motion): smoothing acts like a higher prominence threshold. At equal cloud size it
+// gives the same repeatability (no smoothing, delta_p 40: 580 points, 0.651; 9-bin box, delta_p 30:
+// 579 points, 0.652; no smoothing, delta_p 30: 853 points, 0.607; 9-bin box, delta_p 20: 1038
+// points, 0.603), so it is offered but not used.
+namespace {
+// Centred moving average over `window` bins (shrinking at the ends), O(n) with a running sum.
+void boxSmooth(std::span<const std::uint8_t> in, int window, std::vector<float>& out) {
+  const int n = static_cast<int>(in.size()), half = window / 2;
+  out.resize(in.size());
+  int sum = 0, lo = 0, hi = 0;  // sum of in[lo, hi)
+  for (int i = 0; i < n; ++i) {
+    const int want_lo = std::max(0, i - half), want_hi = std::min(n, i + half + 1);
+    while (hi < want_hi) sum += in[hi++];
+    while (lo < want_lo) sum -= in[lo++];
+    out[i] = static_cast<float>(sum) / static_cast<float>(hi - lo);
+  }
+}
+}  // namespace
 
 std::pair<std::uint32_t, std::uint32_t> binWindow(const CObservationRadarScan& scan, double min_range_m,
                                                   double max_range_m) {
@@ -38,9 +60,15 @@ std::vector<RadarPoint> extractPeakCloud(const CObservationRadarScan& scan, cons
 
   std::vector<RadarPoint> cloud;
   std::vector<Peak> peaks;
+  std::vector<float> smoothed;
   for (std::uint32_t a = 0; a < scan.num_azimuths; ++a) {
     const auto row = scan.row(a).subspan(lo, hi - lo);
-    findPeaks(row, fp, peaks);  // Algorithm 1, line 3
+    if (params.smoothing_bins > 1) {
+      boxSmooth(row, params.smoothing_bins, smoothed);
+      findPeaks(std::span<const float>(smoothed), fp, peaks);
+    } else {
+      findPeaks(row, fp, peaks);  // Algorithm 1, line 3
+    }
     if (peaks.empty()) continue;
 
     // Algorithm 1, line 4: mean and (population) standard deviation of the peak powers.
