@@ -87,8 +87,8 @@ TEST(OxfordGroundTruth, Full9kmSequenceChainsWithoutGaps) {
 TEST(OxfordGroundTruth, ChainComposesRelativeRows) {
   // Two synthetic rows: 1 m forward, then 1 m forward after turning 90 deg left.
   std::vector<OxfordOdometryRow> rows(2);
-  rows[0] = {2000, 1000, 20, 10, {1, 0, std::numbers::pi / 2}};
-  rows[1] = {3000, 2000, 30, 20, {1, 0, 0}};
+  rows[0].source = 2000, rows[0].destination = 1000, rows[0].motion = {1, 0, std::numbers::pi / 2};
+  rows[1].source = 3000, rows[1].destination = 2000, rows[1].motion = {1, 0, 0};
   const auto traj = chainOxfordOdometry(rows, "synthetic.csv");
   ASSERT_EQ(traj.size(), 3u);
   EXPECT_EQ(traj[0].stamp, 1000);

@@ -30,6 +30,7 @@ std::vector<OxfordOdometryRow> readOxfordOdometryRows(const std::filesystem::pat
       throw InputError(where,
                        "malformed row: expected 10 comma-separated fields, got " + std::to_string(f.size()));
     OxfordOdometryRow r;
+    r.line = line_no;
     r.source = parseInt(f[0], where, "source_timestamp") * kNsPerUs;
     r.destination = parseInt(f[1], where, "destination_timestamp") * kNsPerUs;
     r.motion = {parseDouble(f[2], where, "x"), parseDouble(f[3], where, "y"),
@@ -53,10 +54,10 @@ Trajectory chainOxfordOdometry(const std::vector<OxfordOdometryRow>& rows, const
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const auto& r = rows[k];
     if (r.destination != traj.back().stamp)
-      throw InputError(lineWhere(csv, k + 2), "ground-truth gap: destination_timestamp " +
-                                                  std::to_string(r.destination / kNsPerUs) +
-                                                  " != previous row's source_timestamp " +
-                                                  std::to_string(traj.back().stamp / kNsPerUs));
+      throw InputError(lineWhere(csv, r.line ? r.line : k + 2),
+                       "ground-truth gap: destination_timestamp " + std::to_string(r.destination / kNsPerUs) +
+                           " != previous row's source_timestamp " +
+                           std::to_string(traj.back().stamp / kNsPerUs));
     // T_abs(new) = T_abs(prev) * T_rel  (TPose2D::operator+ is SE(2) composition).
     traj.push_back({r.source, traj.back().pose + r.motion});
   }

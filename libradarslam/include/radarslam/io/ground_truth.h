@@ -17,6 +17,7 @@ struct OxfordOdometryRow {
   StampNs source = 0, destination = 0;              ///< mid-sweep times
   StampNs source_radar = 0, destination_radar = 0;  ///< scan file names (first azimuth)
   mrpt::math::TPose2D motion;                       ///< x, y, yaw of T_destination_source
+  std::size_t line = 0;                             ///< 1-based line in the CSV (0 = unknown)
 };
 
 /// Parses gt/radar_odometry.csv (header checked, 10 fields per row).
