@@ -23,9 +23,9 @@ namespace {
 int runCart(int argc, char** argv) {
   CommandLine cmd("cart",
                   "Writes one radar scan as a Cartesian image (sensor at the centre, +x up, +y right). "
-                  "PATH is a dataset directory (scan --index) or a single scan file.");
-  TCLAP::UnlabeledValueArg<std::string> path_arg("path", "Dataset directory or scan file", true, "", "PATH",
-                                                 cmd.tclap());
+                  "PATH is a dataset directory or .rawlog (scan --index) or a single scan file.");
+  TCLAP::UnlabeledValueArg<std::string> path_arg("path", "Dataset directory, .rawlog or scan file", true, "",
+                                                 "PATH", cmd.tclap());
   TCLAP::UnlabeledValueArg<std::string> out_arg("out", "Output image (.png)", true, "", "OUT", cmd.tclap());
   TCLAP::ValueArg<long long> index_arg("", "index", "Scan index in the dataset (0-based)", false, 0, "N",
                                        cmd.tclap());
@@ -49,7 +49,7 @@ int runCart(int argc, char** argv) {
   if (ext != ".png") throw InputError(out.string(), "output must be a .png file");
 
   CObservationRadarScan::Ptr scan;
-  if (std::filesystem::is_directory(path)) {
+  if (std::filesystem::is_directory(path) || path.extension() == ".rawlog") {
     const auto reader = openDataset(path);
     const auto index = static_cast<std::size_t>(index_arg.getValue());
     if (index >= reader->size())
@@ -57,7 +57,8 @@ int runCart(int argc, char** argv) {
                                           std::to_string(reader->size()) + " scans)");
     scan = reader->readScan(index);
   } else {
-    if (index_arg.isSet()) throw InputError(where, "--index needs a dataset directory, not a scan file");
+    if (index_arg.isSet())
+      throw InputError(where, "--index needs a dataset directory or .rawlog, not a scan file");
     scan = readScanFile(path);
   }
 
