@@ -1,0 +1,113 @@
+#pragma once
+// The simulated radar: sensor geometry, the physics that make real Navtech data hard, and the
+// weather presets. Rendering a scan:
+//  1. every azimuth is fired from the radar pose at its own time (motion distortion); a beam is
+//     traced as `rays_per_azimuth` sub-rays through the world (partial occlusion, multiple returns
+//     through foliage/fences/cars);
+//  2. each hit's power (reflectivity x texture x incidence law x range loss x weather
+//     attenuation) is spread over neighbouring azimuths by the antenna pattern (Gaussian main lobe,
+//     ~1.8 deg 3 dB, plus far sidelobes for strong targets) and over range bins by the range
+//     response and the target's depth; specular walls add multipath ghosts behind them;
+//  3. noise floor (range dependent, per-azimuth gain jitter), near-range clutter, receiver
+//     saturation streaks and weather clutter are added; the result is multiplied by a speckle
+//     field (complex Gaussian, correlated along range and azimuth) and compressed to 8 bit the way
+//     the Navtech does (about 20*log10 of an integer amplitude, in 1 dB-like steps).
+#include <memory>
+#include <string>
+
+#include "radarslam/core/time.h"
+#include "radarslam/obs/CObservationRadarScan.h"
+#include "radarslam/sim/route.h"
+#include "radarslam/sim/world.h"
+
+namespace radarslam {
+class YamlParams;
+}
+
+namespace radarslam::sim {
+
+struct RadarGeometry {
+  int azimuths = 400;  ///< per rotation (Oxford CTS350-X: 400)
+  int bins = 3768;     ///< range bins (Oxford: 3768)
+  double range_resolution_m = 0.0432;
+  double rotation_hz = 4.0;  ///< 4 Hz = 240 rpm
+  int encoder_size = 5600;   ///< encoder counts per revolution (Navtech)
+
+  double maxRange() const { return bins * range_resolution_m; }
+  StampNs scanPeriodNs() const;
+  /// Encoder count of azimuth i (Oxford: 13, 27, ..., 5599).
+  int encoder(int i) const;
+  double angle(int i) const;  ///< radians, from the encoder count
+};
+
+struct RadarPhysics {
+  double beam_width_deg = 1.8;          ///< two-way 3 dB width of the antenna main lobe
+  int rays_per_azimuth = 4;             ///< sub-rays traced per azimuth
+  double sidelobe_db = -45;             ///< far sidelobe level relative to the main lobe
+  double sidelobe_extent_deg = 10;      ///< far sidelobes reach this far either side
+  double power_scale = 4.0e9;           ///< received power of a unit target at 1 m
+  double range_exponent = 0.6;          ///< power falls as range^-exponent
+  double specular_exponent = 20;        ///< sharpness of the specular lobe (smooth surfaces)
+  double range_psf_bins = 1.0;          ///< sigma of the range response, bins
+  double speckle_range_corr = 0.93;     ///< correlation of the speckle field between adjacent bins
+  double speckle_azimuth_corr = 0.55;   ///< ... between adjacent azimuths
+  double noise_floor_power = 6.5;       ///< mean noise power (amplitude^2) far away
+  double near_noise_power = 12.0;       ///< extra noise power close to the radar
+  double near_noise_range_m = 60.0;     ///< e-folding range of the extra near noise
+  double azimuth_gain_jitter_db = 1.5;  ///< per-azimuth receiver gain variation
+  double near_clutter_power = 3.0e4;    ///< housing/mount returns in the first metres
+  double near_clutter_range_m = 1.6;
+  double saturation_amplitude = 6.0e6;   ///< receiver clips here (pixel ~136)
+  double streak_threshold_power = 3e11;  ///< a return this strong saturates the receiver...
+  double streak_power = 1.0e4;           ///< ...raising the whole azimuth by this power
+  double streak_probability = 0.35;      ///< chance a saturating azimuth shows the streak
+  double multipath_db = -14;             ///< ghost power relative to the direct return
+  double multipath_min_cos = 0.55;       ///< only near-normal specular walls make ghosts
+  double ground_clutter_power = 150.0;   ///< road/grass returns of the fan beam at 10 m...
+  double ground_clutter_exponent = 1.0;  ///< ...falling as range^-exponent, up to the first wall
+  double ground_texture_m = 3.0;         ///< ground patches (stable across scans)
+  double code_per_octave = 6.02;         ///< 8-bit code per doubling of amplitude (20*log10)
+};
+
+/// Weather effects on top of the physics.
+struct Weather {
+  std::string name = "clear";
+  double noise_floor_gain_db = 0;   ///< raises the noise floor (rain/fog clutter)
+  double attenuation_db_per_m = 0;  ///< two-way path attenuation
+  double volume_clutter_power = 0;  ///< rain backscatter near the radar
+  double volume_clutter_range_m = 30;
+  double blanked_sector_deg = 0;     ///< snow on the radome: width of the lost sector...
+  double blanked_centre_deg = 0;     ///< ...centred here (0 = straight ahead)
+  double blanked_residual_db = -35;  ///< what is left of returns in the sector
+};
+
+/// "clear", "fog", "rain" or "snow". Throws InputError for anything else.
+Weather weatherPreset(const std::string& name);
+
+/// Overrides from a YAML section (keys = field names).
+void loadGeometry(const YamlParams& yaml, RadarGeometry& g);
+void loadPhysics(const YamlParams& yaml, RadarPhysics& p);
+
+/// Renders scans of a world along a route. Not thread-safe (holds scratch buffers).
+class RadarRenderer {
+ public:
+  RadarRenderer(const World& world, const Route& route, const RadarGeometry& geometry,
+                const RadarPhysics& physics, const Weather& weather, std::uint64_t seed);
+  ~RadarRenderer();
+
+  /// Renders the scan whose first azimuth fires at `start` (stamps are whole microseconds, as
+  /// Oxford files store them). `scan_index` seeds the noise, so rendering is reproducible.
+  void render(StampNs start, std::uint64_t scan_index, CObservationRadarScan& out);
+
+  /// Stamp of azimuth i of a scan starting at `start`.
+  StampNs azimuthStamp(StampNs start, int i) const;
+
+  const RadarGeometry& geometry() const { return geometry_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  RadarGeometry geometry_;
+};
+
+}  // namespace radarslam::sim

@@ -1,0 +1,71 @@
+#pragma once
+// The simulated vehicle's route through a World: a tour of the street grid and the countryside
+// loop with rounded corners, a speed profile (0-15 m/s, limited acceleration, slow in turns, stops
+// at some intersections) and several loop closures, including revisits in the opposite direction.
+// The radar's pose at any time is interpolated from the route (so each azimuth can be fired from
+// its own pose: motion distortion).
+#include <mrpt/math/TPose2D.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "radarslam/core/trajectory.h"
+#include "radarslam/sim/world.h"
+
+namespace radarslam::sim {
+
+struct RouteParams {
+  double lane_offset_m = 1.8;             ///< traversal 1: left of the street centreline (UK)
+  double lane_offset_traversal2_m = 0.6;  ///< traversal 2: a different lane position
+  double city_speed_mps = 11.0;
+  double corridor_speed_mps = 13.0;
+  double country_speed_mps = 15.0;  ///< never above 15 m/s
+  double lateral_accel_mps2 = 2.0;  ///< sets the speed in turns
+  double accel_mps2 = 1.5, decel_mps2 = 2.5;
+  double stop_probability = 0.35;  ///< per straight crossing of an intersection
+  double stop_min_s = 2.0, stop_max_s = 6.0;
+  double corner_radius_m = 9.0;
+  double country_corner_radius_m = 45.0;
+  double start_time_s = 1600000000.0;       ///< UNIX time of the route start (traversal 1)
+  double traversal2_delay_s = 7 * 86400.0;  ///< traversal 2 starts this much later
+};
+
+struct RouteSample {
+  double s = 0;         ///< arc length, m
+  double t_arrive = 0;  ///< seconds since the route start
+  double t_depart = 0;  ///< > t_arrive while stopped here
+  double x = 0, y = 0, yaw = 0;
+  double speed = 0;
+};
+
+class Route {
+ public:
+  std::vector<RouteSample> samples;
+  StampNs start_stamp = 0;
+  int traversal = 1;
+
+  double length() const { return samples.empty() ? 0.0 : samples.back().s; }
+  double duration() const { return samples.empty() ? 0.0 : samples.back().t_depart; }
+  /// Radar pose at time t (UNIX ns), clamped to the route's time span.
+  mrpt::math::TPose2D poseAt(StampNs t) const;
+  double speedAt(StampNs t) const;
+  /// Time (UNIX ns) at which the route reaches arc length s.
+  StampNs stampAtDistance(double s) const;
+};
+
+/// The route for traversal 1 or 2 of `world`: laps of the tour until it is at least
+/// `min_length_m` long and lasts at least `min_duration_s` (then it ends with a stop).
+Route planRoute(const World& world, const RouteParams& params, std::uint64_t seed, int traversal,
+                double min_length_m = 0, double min_duration_s = 0);
+
+/// A place where the trajectory comes back to where it was at least `min_gap_s` earlier.
+struct LoopEvent {
+  std::size_t later = 0, earlier = 0;  ///< indices into the trajectory
+  double distance_m = 0;
+  bool opposite_direction = false;  ///< headings differ by more than 120 degrees
+};
+
+/// Loop closures in a trajectory: contiguous revisits (within `radius_m`) are one event.
+std::vector<LoopEvent> findLoops(const Trajectory& traj, double radius_m = 8.0, double min_gap_s = 30.0);
+
+}  // namespace radarslam::sim
