@@ -81,7 +81,7 @@ void drawPanel(Canvas& c, const Panel& p, const KittiResult& k) {
 std::vector<std::filesystem::path> writeSegmentErrorPlot(const std::filesystem::path& stem,
                                                          const EvalReport& r) {
   const KittiResult& k = r.kitti;
-  const double width = 1000, height = 470;
+  const double width = 1000, height = 440;
   const Panel trans{80,
                     100,
                     380,

@@ -67,9 +67,9 @@ std::vector<std::filesystem::path> writeTrajectoryPlot(const std::filesystem::pa
   for (const auto& p : est) est_pts.push_back(f(p.x, p.y));
 
   // Legend in the corner the trajectories cross least.
-  const std::array<std::string, 5> entries{"ground truth", "estimate (aligned)", "start",
-                                           "end (ground truth)", "end (estimate)"};
-  const double legend_w = 36 + textWidth("end (ground truth)", 12) + 14,
+  const std::array<std::string, 6> entries{"ground truth",     "estimate (aligned)", "start (ground truth)",
+                                           "start (estimate)", "end (ground truth)", "end (estimate)"};
+  const double legend_w = 36 + textWidth("start (ground truth)", 12) + 14,
                legend_h = 14 + 20.0 * entries.size();
   std::array<Pt, 4> corners{Pt{left + 10, top + 10}, Pt{left + plot_w - 10 - legend_w, top + 10},
                             Pt{left + 10, top + plot_h - 10 - legend_h},
@@ -113,6 +113,7 @@ std::vector<std::filesystem::path> writeTrajectoryPlot(const std::filesystem::pa
     if (!gt_pts.empty()) {
       // The start ring is larger and drawn first so that an end at the start stays visible inside it.
       c.circle(gt_pts.front(), 8, kStartColor, Stroke{kWhite, 1.5});
+      c.circle(est_pts.front(), 6, std::nullopt, Stroke{kStartColor, 2.0});
       drawMarkerSquare(c, gt_pts.back(), 4.5, kEndColor, Stroke{kWhite, 1.0});
       drawMarkerSquare(c, est_pts.back(), 5.5, std::nullopt, Stroke{kEndColor, 2.0});
     }
@@ -132,6 +133,9 @@ std::vector<std::filesystem::path> writeTrajectoryPlot(const std::filesystem::pa
           c.circle(m, 7, kStartColor, Stroke{kWhite, 1.5});
           break;
         case 3:
+          c.circle(m, 5.5, std::nullopt, Stroke{kStartColor, 2.0});
+          break;
+        case 4:
           drawMarkerSquare(c, m, 4.5, kEndColor, std::nullopt);
           break;
         default:
