@@ -76,6 +76,21 @@ TEST(CliCart, WritesTheCartesianImage) {
   EXPECT_EQ(info.color_type, 2u);  // RGB
 }
 
+TEST(CliCart, ReadsAScanFromARawlog) {
+  RADARSLAM_REQUIRE_REAL_DATA(dir, "oxford_radar_robotcar_tiny");
+  radarslam::test::TempDir tmp;
+  const auto rawlog = tmp / "two.rawlog";
+  Result r = runCli("convert '" + dir.string() + "' '" + rawlog.string() + "' --first 4 --count 2", tmp);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto out = tmp / "from_rawlog.png";
+  r = runCli("cart '" + rawlog.string() + "' '" + out.string() + "' --index 1 --size 300", tmp);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(pngInfo(out).width, 300u);
+  r = runCli("cart '" + rawlog.string() + "' '" + out.string() + "' --index 2", tmp);  // only 2 scans
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("out of range"), std::string::npos) << r.err;
+}
+
 TEST(CliCart, BadArgumentsFailWithOneLine) {
   RADARSLAM_REQUIRE_REAL_DATA(dir, "oxford_radar_robotcar_tiny");
   radarslam::test::TempDir tmp;
