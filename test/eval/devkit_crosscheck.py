@@ -4,7 +4,7 @@ devkit's calcSequenceErrors (4x4 matrices, general inverse, acos-of-trace rotati
 
 Usage: devkit_crosscheck.py RADARSLAM_BINARY OXFORD_SEQUENCE_DIR
 Builds ground truth by chaining gt/radar_odometry.csv, an estimate with a 1 % scale error and a
-yaw drift of 0.05 deg per 10 m, writes both as TUM, runs `radarslam eval --json` and compares the
+yaw drift of 5e-5 rad per metre (0.29 deg/100 m), writes both as TUM, runs `radarslam eval --json` and compares the
 KITTI numbers. Exits 1 on a mismatch above 1e-6 (relative). Needs only the Python standard library.
 """
 import bisect, json, math, os, subprocess, sys, tempfile
