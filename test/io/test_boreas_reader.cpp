@@ -58,6 +58,22 @@ TEST_P(BoreasGeometry, SyntheticScansDecodeWithTheRightGeometry) {
     EXPECT_EQ(std::count(scan->azimuth_valid.begin(), scan->azimuth_valid.end(), 1), kAz);
     EXPECT_EQ(scan->row(3)[g.bins - 1], test::syntheticPower(3, g.bins - 1));
   }
+  // Ground truth: one absolute pose per scan stamp (us), z-down radar (roll pi) heading north-east
+  // (pyboreas heading = angle of the sensor x from east, counter-clockwise).
+  std::string csv =
+      "GPSTime,easting,northing,altitude,vel_east,vel_north,vel_up,roll,pitch,heading,angvel_z,angvel_y,"
+      "angvel_x\n";
+  for (std::size_t s = 0; s < 2; ++s)
+    csv += std::to_string(reader->indexStamp(s) / 1000) + "," + std::to_string(623000.0 + 2.0 * s) + "," +
+           std::to_string(4848000.0 + 2.0 * s) + ",150,0,0,0,3.14159265358979,0,0.785398163397448,0,0,0\n";
+  test::writeText(tmp / "applanix" / "radar_poses.csv", csv);
+  const auto with_gt = openDataset(tmp.path());
+  ASSERT_TRUE(with_gt->hasGroundTruth());
+  ASSERT_EQ(with_gt->groundTruth().size(), 2u);
+  EXPECT_EQ(with_gt->groundTruth()[1].stamp, reader->indexStamp(1));
+  const auto p0 = with_gt->groundTruth()[0].pose, p1 = with_gt->groundTruth()[1].pose;
+  // Moving along the heading: the displacement direction equals the SE(2) yaw.
+  EXPECT_NEAR(std::atan2(p1.y - p0.y, p1.x - p0.x), p1.phi, 1e-6);
   // A resolution given in the options wins.
   ReaderOptions o;
   o.range_resolution_m = 0.05;

@@ -39,6 +39,9 @@ TEST(MulRanRayCsv, MalformedRowsAreErrors) {
                          "6 fields, previous rows had 7");
   test::writeText(file, "1564718975911638410,0.57,9,1,1,2,3\n1564718975912638410,1.47,23,2,1,2,300\n");
   test::expectInputError([&] { readScanFile(file); }, ".csv:2", "outside 0..255");
+  test::writeText(file, "1564718975911638410,0.57,9,1,1,2,3\n1564718975912638410,1.47,23,2,1,2,3\n");
+  test::expectInputError([&] { readScanFile(file); }, "1564718976161407002.csv",
+                         "not the last azimuth's timestamp");
 }
 
 namespace {
@@ -71,6 +74,30 @@ TEST(MulRanReader, OxfordFormSyntheticSequence) {
     EXPECT_EQ(scan->azimuth_valid[1], 1);
     EXPECT_NEAR(scan->azimuth_angles_rad[1], 23.0 / 5600 * 2 * std::numbers::pi, 1e-12);
     EXPECT_EQ(scan->row(7)[11], test::syntheticPower(7, 11));
+  }
+  // global_pose.csv (base poses at 10 Hz, driving 10 m/s along the base x) is interpolated to
+  // the scans' mid-sweep reference times: relative to the first GT row's time t_a, the radar has
+  // moved 10 m/s * (t - t_a) along its x, rotated by the -0.9 deg mounting yaw.
+  std::string csv;
+  const StampNs t_a = kT0 - 100'000'000LL;
+  for (int k = 0; k < 15; ++k) {
+    char line[256];
+    std::snprintf(line, sizeof line, "%lld,1,0,0,%.3f,0,1,0,4000000,0,0,1,20\n",
+                  static_cast<long long>(t_a + k * 100'000'000LL), 350000.0 + k * 1.0);
+    csv += line;
+  }
+  test::writeText(tmp / "global_pose.csv", csv);
+  const auto with_gt = openDataset(tmp.path());
+  ASSERT_TRUE(with_gt->hasGroundTruth());
+  for (std::size_t s = 0; s < 3; ++s) {
+    const auto scan = with_gt->readScan(s);
+    const auto pose = with_gt->groundTruthAt(scan->refStampNs());
+    ASSERT_TRUE(pose.has_value());
+    const double d = 10.0 * toSeconds(scan->refStampNs() - t_a);
+    const double a = -0.9 * std::numbers::pi / 180;
+    EXPECT_NEAR(pose->x, d * std::cos(a), 1e-6);
+    EXPECT_NEAR(pose->y, d * std::sin(a), 1e-6);
+    EXPECT_NEAR(pose->phi, 0.0, 1e-9);
   }
   // readScanFile finds the scan through its dataset folder.
   const auto single = readScanFile(reader->scanPath(1));

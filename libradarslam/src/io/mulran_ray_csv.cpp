@@ -1,6 +1,7 @@
 // MulRan per-ray CSV scan, sensor_data/radar/ray/<t_ns>.csv (FORMATS.md 2.1): one line per
 // azimuth, "t_ns, angle_deg, encoder_count, counter, bin_0 ... bin_{B-1}"; the file name is the
 // last azimuth's time (MulRan stamps scans at the end of the sweep).
+#include <cstdlib>
 #include <cstring>
 #include <numbers>
 #include <string>
@@ -48,6 +49,12 @@ CObservationRadarScan::Ptr readMulRanRayCsv(const std::filesystem::path& csv, co
     rows.push_back(std::move(row));
   }
   if (rows.size() < 2) throw InputError(csv.string(), "fewer than 2 azimuth rows");
+  // The file name, when it is a timestamp, is the last azimuth's time (1 ms tolerance).
+  if (StampNs name_stamp = 0; parseStampByDigits(csv.stem().string(), name_stamp) &&
+                              std::abs(name_stamp - stamps.back()) > kNsPerSec / 1000)
+    throw InputError(csv.string(),
+                     "file name " + csv.stem().string() + " is not the last azimuth's timestamp " +
+                         std::to_string(stamps.back()) + " (MulRan stamps scans at the sweep end)");
   auto scan = CObservationRadarScan::Create();
   scan->resize(static_cast<std::uint32_t>(rows.size()), static_cast<std::uint32_t>(bins));
   scan->sensorLabel = "radar";
