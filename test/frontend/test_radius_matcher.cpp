@@ -63,7 +63,10 @@ TEST(RadiusMatcher, IgnoresIdenticalDescriptorsOutsideTheRadius) {
 }
 
 TEST(KeyframePolicy, TranslationRotationAndMatchCount) {
-  const KeyframeParams p;  // 2 m, 0.2 rad, 60 inliers
+  KeyframeParams p;
+  p.max_translation_m = 2.0;  // the authors' configuration
+  p.max_rotation_rad = 0.2;
+  p.min_inliers = 60;
   EXPECT_FALSE(needNewKeyframe(p, {1.0, 0.5, 0.05}, 200));
   EXPECT_TRUE(needNewKeyframe(p, {2.1, 0.0, 0.0}, 200));
   EXPECT_TRUE(needNewKeyframe(p, {0.1, 0.0, -0.21}, 200));

@@ -9,10 +9,12 @@ namespace radarslam {
 
 AlignImage prepareAlignImage(const cv::Mat& image8u, const PatchAlignParams& params) {
   AlignImage a;
-  image8u.convertTo(a.smooth, CV_32F);
-  if (params.blur_sigma_px > 0) cv::GaussianBlur(a.smooth, a.smooth, cv::Size(), params.blur_sigma_px);
-  cv::Sobel(a.smooth, a.gx, CV_32F, 1, 0, 3, 1.0 / 8.0);
-  cv::Sobel(a.smooth, a.gy, CV_32F, 0, 1, 3, 1.0 / 8.0);
+  cv::Mat blurred = image8u;
+  if (params.blur_sigma_px > 0) {
+    const int k = 2 * static_cast<int>(std::ceil(2.5 * params.blur_sigma_px)) + 1;
+    cv::GaussianBlur(image8u, blurred, cv::Size(k, k), params.blur_sigma_px);  // fast fixed-point 8-bit path
+  }
+  blurred.convertTo(a.smooth, CV_32F);
   return a;
 }
 
@@ -89,35 +91,42 @@ PatchAlignResult alignPatch(const AlignImage& ref, cv::Point2f ref_pt, const Ali
   out.ncc = best;
   if (best < params.min_ncc) return out;
 
-  // 2. Translational Lucas-Kanade from the best integer offset (gain/offset invariant via
-  //    zero-mean patches).
+  // 2. Translational Lucas-Kanade from the best integer offset, inverse compositional (template
+  //    gradients and Hessian computed once), on zero-mean, contrast-matched patches.
+  std::vector<float> tgx(t.size()), tgy(t.size());
+  double h00 = 0, h01 = 0, h11 = 0;
+  for (int dy = -r, k = 0; dy <= r; ++dy)
+    for (int dx = -r; dx <= r; ++dx, ++k) {
+      // Template gradient by central differences (only the template's pixels need one).
+      const float x = ref_pt.x + dx, y = ref_pt.y + dy;
+      tgx[k] = 0.5f * (bilinear(ref.smooth, x + 1, y) - bilinear(ref.smooth, x - 1, y));
+      tgy[k] = 0.5f * (bilinear(ref.smooth, x, y + 1) - bilinear(ref.smooth, x, y - 1));
+      h00 += static_cast<double>(tgx[k]) * tgx[k];
+      h01 += static_cast<double>(tgx[k]) * tgy[k];
+      h11 += static_cast<double>(tgy[k]) * tgy[k];
+    }
+  const double det = h00 * h11 - h01 * h01;
   float px = static_cast<float>(cx + bx), py = static_cast<float>(cy + by);
-  for (int it = 0; it < params.lk_iterations; ++it) {
-    double h00 = 0, h01 = 0, h11 = 0, b0 = 0, b1 = 0, cm = 0;
-    std::vector<float> cv(static_cast<std::size_t>(n * n));
+  std::vector<float> cur_patch(t.size());
+  for (int it = 0; it < params.lk_iterations && det > 1e-9; ++it) {
+    double cm = 0;
     for (int dy = -r, k = 0; dy <= r; ++dy)
-      for (int dx = -r; dx <= r; ++dx, ++k) cm += cv[k] = bilinear(cur.smooth, px + dx, py + dy);
+      for (int dx = -r; dx <= r; ++dx, ++k) cm += cur_patch[k] = bilinear(cur.smooth, px + dx, py + dy);
     cm /= n * n;
     double cn = 0;
-    for (float v : cv) cn += (v - cm) * (v - cm);
+    for (float v : cur_patch) cn += (v - cm) * (v - cm);
     const double gain = cn > 1e-9 ? std::sqrt(tn / cn) : 1.0;  // match the template's contrast
-    for (int dy = -r, k = 0; dy <= r; ++dy)
-      for (int dx = -r; dx <= r; ++dx, ++k) {
-        const double gx = gain * bilinear(cur.gx, px + dx, py + dy);
-        const double gy = gain * bilinear(cur.gy, px + dx, py + dy);
-        const double e = t[k] - gain * (cv[k] - cm);
-        h00 += gx * gx;
-        h01 += gx * gy;
-        h11 += gy * gy;
-        b0 += gx * e;
-        b1 += gy * e;
-      }
-    const double det = h00 * h11 - h01 * h01;
-    if (det <= 1e-9) break;
+    double b0 = 0, b1 = 0;
+    for (std::size_t k = 0; k < t.size(); ++k) {
+      const double e = gain * (cur_patch[k] - cm) - t[k];
+      b0 += tgx[k] * e;
+      b1 += tgy[k] * e;
+    }
+    // Template shifted by u matches the current patch: the patch lies at p - u.
     const double ux = (h11 * b0 - h01 * b1) / det, uy = (h00 * b1 - h01 * b0) / det;
     if (!std::isfinite(ux) || !std::isfinite(uy) || std::abs(ux) > 1.0 || std::abs(uy) > 1.0) break;
-    px += static_cast<float>(ux);
-    py += static_cast<float>(uy);
+    px -= static_cast<float>(ux);
+    py -= static_cast<float>(uy);
     if (std::hypot(px - (cx + bx), py - (cy + by)) > 1.5 || !inside(cur.smooth, cvRound(px), cvRound(py))) {
       px = static_cast<float>(cx + bx);
       py = static_cast<float>(cy + by);

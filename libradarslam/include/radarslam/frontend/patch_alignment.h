@@ -15,16 +15,16 @@ struct PatchAlignParams {
   int search_radius_px = 2;  ///< integer offsets searched around the initial position
   int lk_iterations = 3;
   double min_ncc = 0.6;  ///< below this the pair is left unrefined and flagged
-  double blur_sigma_px = 1.0;
+  double blur_sigma_px = 1.5;
   /// After the first pose, also track every other keyframe keypoint into the current image.
   bool track_keyframe_points = true;
   int track_search_radius_px = 1;
   double track_gate_m = 0.5;  ///< tracked points farther than this from the estimate are dropped
 };
 
-/// Image prepared for alignment (float, smoothed, with gradients).
+/// Image prepared for alignment (smoothed, float).
 struct AlignImage {
-  cv::Mat smooth, gx, gy;
+  cv::Mat smooth;
 };
 
 AlignImage prepareAlignImage(const cv::Mat& image8u, const PatchAlignParams& params);
