@@ -39,6 +39,8 @@ TEST(OxfordReader, TinySequenceDecodesWithItsOwnGeometryAndTimes) {
     EXPECT_EQ(std::count(scan->azimuth_valid.begin(), scan->azimuth_valid.end(), 1), 400);
     EXPECT_EQ(scan->refStampNs(), scan->azimuth_stamps_ns.front() / 2 + scan->azimuth_stamps_ns.back() / 2);
   }
+  // A single file decodes the same on its own (the dataset is found from its folder).
+  EXPECT_EQ(readScanFile(reader->scanPath(7))->power, reader->readScan(7)->power);
 }
 
 TEST(OxfordReader, GroundTruthRowsMatchScansAndChainIntoForwardMotion) {
