@@ -120,6 +120,7 @@ TEST(TrajectoryFiles, ReadsStampedKittiAndSkipsComments) {
   ASSERT_EQ(t.size(), 2u);
   EXPECT_EQ(t[1].stamp, 1632182400250000000LL);
   EXPECT_DOUBLE_EQ(t[1].pose.x, 11.0);
+  EXPECT_THROW(readKittiTrajectory(dir / "boreas.txt", {1, 2}), InputError);  // two sources of stamps
 }
 
 TEST(TrajectoryFiles, TumYawComesFromTheQuaternion) {

@@ -254,6 +254,9 @@ Trajectory readKittiTrajectory(const fs::path& file, const std::vector<StampNs>&
                        cat("column count changes from ", std::to_string(lines.front().fields.size()), " to ",
                            std::to_string(n)));
     const std::size_t off = n - 12;
+    if (off == 1 && !stamps_in.empty())
+      throw InputError(at(file, line.number),
+                       "the file carries its own stamps (13 columns); drop the stamps file");
     std::array<double, 12> m{};
     for (std::size_t i = 0; i < 12; ++i)
       m[i] = parseNumber(line.fields[off + i], file, line.number, "matrix entry");
