@@ -52,18 +52,18 @@ TEST(SimRealism, SimulatedScansMatchRealOxfordStatistics) {
   }
   const auto real = averageStatistics(real_stats), simulated = averageStatistics(sim_stats);
   std::cout << compareStatisticsTable(real, simulated);
-  // Overall intensity distribution: mean absolute CDF difference below 2.5 codes (~dB).
-  EXPECT_LT(histogramDistance(real.histogram, simulated.histogram), 2.5);
-  EXPECT_NEAR(simulated.zero_fraction, real.zero_fraction, 0.1);
-  // Bright bins (>= 10 dB over the band's floor): overall within a factor of 2.
-  EXPECT_GT(simulated.bright_fraction, real.bright_fraction / 2);
-  EXPECT_LT(simulated.bright_fraction, real.bright_fraction * 2);
+  // Overall intensity distribution: mean absolute CDF difference below 2.2 codes (~dB).
+  EXPECT_LT(histogramDistance(real.histogram, simulated.histogram), 2.2);
+  EXPECT_NEAR(simulated.zero_fraction, real.zero_fraction, 0.08);
+  // Bright bins (>= 10 dB over the band's floor): overall within a factor of 1.6.
+  EXPECT_GT(simulated.bright_fraction, real.bright_fraction / 1.6);
+  EXPECT_LT(simulated.bright_fraction, real.bright_fraction * 1.6);
   ASSERT_EQ(real.bands.size(), simulated.bands.size());
   for (std::size_t k = 0; k < real.bands.size(); ++k) {
     const auto &r = real.bands[k], &m = simulated.bands[k];
-    EXPECT_NEAR(m.floor, r.floor, 8.0) << "band " << k;                   // noise floor within 8 dB
-    EXPECT_NEAR(m.contrast, r.contrast, 0.4) << "band " << k;             // speckle contrast
-    EXPECT_GT(m.bright_fraction, r.bright_fraction / 6) << "band " << k;  // far bands are the weakest
+    EXPECT_NEAR(m.floor, r.floor, 5.0) << "band " << k;        // noise floor within 5 dB
+    EXPECT_NEAR(m.contrast, r.contrast, 0.3) << "band " << k;  // speckle contrast
+    EXPECT_GT(m.bright_fraction, r.bright_fraction / 3) << "band " << k;
     EXPECT_LT(m.bright_fraction, r.bright_fraction * 3) << "band " << k;
   }
 }

@@ -50,7 +50,10 @@ std::vector<unsigned char> encodeOxfordPng(const CObservationRadarScan& scan, in
     std::memcpy(p + 11, row.data(), row.size());
   }
   std::vector<unsigned char> bytes;
-  if (!cv::imencode(".png", img, bytes, {cv::IMWRITE_PNG_COMPRESSION, png_compression}))
+  // Huffman-only: radar speckle has few repeats for LZ matching; this is faster and smaller.
+  if (!cv::imencode(".png", img, bytes,
+                    {cv::IMWRITE_PNG_COMPRESSION, png_compression, cv::IMWRITE_PNG_STRATEGY,
+                     cv::IMWRITE_PNG_STRATEGY_HUFFMAN_ONLY}))
     throw InputError("encodeOxfordPng", "PNG encoding failed");
   return bytes;
 }

@@ -264,7 +264,7 @@ struct RadarRenderer::Impl {
       const auto iy = static_cast<std::int64_t>(std::floor(q.y / p.ground_texture_m));
       const double h = hashToUnit(hashCombine(hashCombine(world.seed, static_cast<std::uint64_t>(ix)),
                                               static_cast<std::uint64_t>(iy)));
-      const double tex = 0.05 + 4.0 * h * h * h * h;
+      const double tex = 0.02 + 6.0 * std::pow(h, 6.0);
       row[c] = static_cast<float>(p.ground_clutter_power * tex *
                                   std::pow(std::max(r, 3.0) / 10.0, -p.ground_clutter_exponent) *
                                   dbToLinear(-weather.attenuation_db_per_m * r));

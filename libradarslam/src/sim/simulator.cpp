@@ -1,6 +1,7 @@
 #include "radarslam/sim/simulator.h"
 
 #include <chrono>
+#include <future>
 
 #include "radarslam/core/errors.h"
 #include "radarslam/core/yaml_params.h"
@@ -95,13 +96,19 @@ SimulationSummary simulateToDirectory(const SimulationConfig& config, const std:
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim(config);
   OxfordWriter writer(out_dir, config.png_compression, config.geometry.encoder_size);
-  CObservationRadarScan scan;
+  // Render scan i while scan i-1 is encoded and written on a second thread (double buffer).
+  CObservationRadarScan buffers[2];
+  std::future<void> pending;
   const std::size_t n = sim.numScans();
   for (std::size_t i = 0; i < n; ++i) {
+    CObservationRadarScan& scan = buffers[i % 2];
     sim.render(i, scan);
-    writer.writeScan(scan, sim.truthAt(scan.refStampNs()));
+    if (pending.valid()) pending.get();  // the previous write (rethrows its error)
+    const auto truth = sim.truthAt(scan.refStampNs());
+    pending = std::async(std::launch::async, [&writer, &scan, truth] { writer.writeScan(scan, truth); });
     if (progress) progress(i + 1, n);
   }
+  if (pending.valid()) pending.get();
   writer.finish();
   SimulationSummary s;
   s.scans = n;

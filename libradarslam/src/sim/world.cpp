@@ -29,7 +29,7 @@ Surface facadeSurface(Rng& rng) {
   s.reflectivity = static_cast<float>(rng.uniform(0.35, 1.0));
   s.roughness = static_cast<float>(rng.uniform(0.1, 0.6));
   // The fan beam (~40 deg vertically) sees partly over low buildings and roofs.
-  s.transmission = rng.chance(0.4) ? 0.1f : 0.02f;
+  s.transmission = rng.chance(0.4) ? 0.15f : 0.04f;
   s.depth_m = static_cast<float>(rng.uniform(0.05, 0.5));
   s.texture_period_m = static_cast<float>(rng.uniform(1.0, 3.5));
   s.texture_seed = static_cast<std::uint32_t>(rng.next());

@@ -52,21 +52,21 @@ struct RadarPhysics {
   double speckle_range_corr = 0.93;     ///< correlation of the speckle field between adjacent bins
   double speckle_azimuth_corr = 0.55;   ///< ... between adjacent azimuths
   double noise_floor_power = 6.5;       ///< mean noise power (amplitude^2) far away
-  double near_noise_power = 12.0;       ///< extra noise power close to the radar
+  double near_noise_power = 4.0;        ///< extra noise power close to the radar
   double near_noise_range_m = 60.0;     ///< e-folding range of the extra near noise
   double azimuth_gain_jitter_db = 1.5;  ///< per-azimuth receiver gain variation
   double near_clutter_power = 3.0e4;    ///< housing/mount returns in the first metres
   double near_clutter_range_m = 1.6;
-  double saturation_amplitude = 6.0e6;   ///< receiver clips here (pixel ~136)
-  double streak_threshold_power = 3e11;  ///< a return this strong saturates the receiver...
-  double streak_power = 1.0e4;           ///< ...raising the whole azimuth by this power
-  double streak_probability = 0.35;      ///< chance a saturating azimuth shows the streak
-  double multipath_db = -14;             ///< ghost power relative to the direct return
-  double multipath_min_cos = 0.55;       ///< only near-normal specular walls make ghosts
-  double ground_clutter_power = 150.0;   ///< road/grass returns of the fan beam at 10 m...
-  double ground_clutter_exponent = 1.0;  ///< ...falling as range^-exponent, up to the first wall
-  double ground_texture_m = 3.0;         ///< ground patches (stable across scans)
-  double code_per_octave = 6.02;         ///< 8-bit code per doubling of amplitude (20*log10)
+  double saturation_amplitude = 6.0e6;    ///< receiver clips here (pixel ~136)
+  double streak_threshold_power = 1.5e8;  ///< a return this strong saturates the receiver...
+  double streak_power = 3.0e3;            ///< ...raising the whole azimuth by this power
+  double streak_probability = 0.1;        ///< chance a saturating azimuth shows the streak
+  double multipath_db = -14;              ///< ghost power relative to the direct return
+  double multipath_min_cos = 0.55;        ///< only near-normal specular walls make ghosts
+  double ground_clutter_power = 120.0;    ///< road/grass returns of the fan beam at 10 m...
+  double ground_clutter_exponent = 0.8;   ///< ...falling as range^-exponent, up to the first wall
+  double ground_texture_m = 1.5;          ///< ground patches (stable across scans)
+  double code_per_octave = 6.02;          ///< 8-bit code per doubling of amplitude (20*log10)
 };
 
 /// Weather effects on top of the physics.
