@@ -1,0 +1,45 @@
+#pragma once
+// The versioned on-disk map (a directory maps/NAME/, format in maps/README.md): manifest.yaml
+// (version, geometry, counts, SHA-256 per file), parameters.yaml, keyframes.bin, points.bin,
+// graph.bin. Saving is atomic for the whole directory: a crash at any point leaves the old or the
+// new complete map loadable.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "radarslam/map/keyframe_map.h"
+
+namespace radarslam {
+
+/// The newest map format this build reads and the one it writes.
+constexpr std::uint32_t kMapFormatVersion = 1;
+
+/// A plain name ("campus") resolves to maps/NAME relative to the current directory, or to
+/// $RADARSLAM_MAPS_DIR/NAME if that exists and ./maps/NAME does not; anything with a '/' (or '.',
+/// '..') is a path and is used as is.
+std::filesystem::path resolveMapPath(const std::string& name_or_path);
+
+struct MapSaveHooks {
+  /// Called after each file of the temporary directory is written (file name); tests throw from it
+  /// to simulate a crash in the middle of a save.
+  std::function<void(const std::string& file)> after_file;
+};
+
+/// Writes `map` to directory `dir` atomically: everything goes into the sibling `.NAME.map-tmp`
+/// (fsynced), then the old map (if any) is renamed to `.NAME.map-backup`, the new one renamed into
+/// place and the backup deleted. Anything else inside an old `dir` (e.g. exports/) goes with it.
+/// Throws InputError naming the file on I/O failure (the previous map stays loadable).
+void saveMap(const KeyframeMap& map, const std::filesystem::path& dir, const MapSaveHooks& hooks = {});
+
+/// Reads and verifies a map directory. If `dir` is missing but its `.NAME.map-backup` is complete
+/// (a save was interrupted between the two renames) the backup is moved back and loaded.
+/// Throws InputError naming the file and the problem: missing, checksum mismatch, truncated,
+/// newer format version, malformed.
+KeyframeMap loadMap(const std::filesystem::path& dir);
+
+/// The sibling directories used by saveMap (exposed for tests and tools).
+std::filesystem::path mapTempDir(const std::filesystem::path& dir);
+std::filesystem::path mapBackupDir(const std::filesystem::path& dir);
+
+}  // namespace radarslam
