@@ -339,7 +339,7 @@ struct RadarRenderer::Impl {
       float keep = 1.0f, keep_floor = 1.0f;
       if (blank_half > 0 &&
           std::abs(std::remainder(g.angle(a) - blank_centre, 2 * std::numbers::pi)) < blank_half)
-        keep = residual, keep_floor = 0.25f;
+        keep = residual, keep_floor = 0.25f, streak = 0;  // nothing strong gets through the snow
       const float* s = signal.data() + static_cast<std::size_t>(a) * B;
       const float* gr = ground.data() + static_cast<std::size_t>(a) * (B / kGroundStep + 1);
       std::uint8_t* px = out.power.data() + static_cast<std::size_t>(a) * B;

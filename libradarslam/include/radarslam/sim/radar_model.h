@@ -78,7 +78,7 @@ struct Weather {
   double volume_clutter_range_m = 30;
   double blanked_sector_deg = 0;     ///< snow on the radome: width of the lost sector...
   double blanked_centre_deg = 0;     ///< ...centred here (0 = straight ahead)
-  double blanked_residual_db = -35;  ///< what is left of returns in the sector
+  double blanked_residual_db = -50;  ///< what is left of returns in the sector
 };
 
 /// "clear", "fog", "rain" or "snow". Throws InputError for anything else.
