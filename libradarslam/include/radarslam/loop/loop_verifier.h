@@ -1,0 +1,73 @@
+#pragma once
+// Geometric verification of a loop candidate (paper Sec. III-C): the relative pose between the
+// query's and the candidate keyframe's peak clouds with no initial guess (a revisit may be in the
+// opposite direction), then acceptance tests that keep false loops out.
+//
+//  1. Global search (consensus over hypotheses, deterministic): both clouds are thinned on a
+//     voxel grid; for each of `rotation_steps` rotations every (query, candidate) point pair votes
+//     for the translation that would overlay them (a 2D Hough grid); each rotation's strongest
+//     translation cell is a hypothesis. Hypotheses are taken by votes with non-maximum
+//     suppression, the best `hypotheses` are refined by a short point-to-point ICP on the thinned
+//     clouds and scored by their inlier count (RANSAC-style consensus).
+//  2. Uniqueness (ambiguous places, e.g. a street of identical facades): the best hypothesis must
+//     beat every hypothesis that is far from it in pose by a margin (second / best <=
+//     max_ambiguity_ratio); otherwise the place is ambiguous and the loop is rejected.
+//  3. Refinement: mrpt::slam::CICP (classic ICP) on the full clouds from the best hypothesis.
+//  4. Acceptance: enough inliers (absolute and as a share of the smaller cloud), a small inlier
+//     RMS, and inliers spread around the sensor (at least min_inlier_sectors of 8 bearing sectors).
+//
+// The information matrix is the Gauss-Newton Hessian of the point-to-point residuals at the
+// solution, J^T J / sigma^2 with sigma = max(inlier RMS, min_sigma_m), times information_scale
+// (< 1: neighbouring radar points are not independent measurements).
+#include <mrpt/math/TPose2D.h>
+#include <Eigen/Core>
+
+#include <span>
+#include <string>
+
+#include "radarslam/radar/peak_cloud.h"
+
+namespace radarslam {
+
+class YamlParams;
+
+struct LoopVerifierParams {
+  double voxel_m = 1.0;                 ///< thinning for the global search
+  std::size_t max_search_points = 300;  ///< per cloud, after thinning
+  int rotation_steps = 180;             ///< 2 degrees
+  double max_translation_m = 40;        ///< search window for the translation
+  double vote_cell_m = 1.0;             ///< Hough grid cell
+  int hypotheses = 8;                   ///< refined and scored
+  double suppression_distance_m = 3.0;  ///< hypotheses closer than this (and angle) are one
+  double suppression_angle_deg = 15.0;
+  double inlier_distance_m = 1.0;    ///< point-to-point inlier gate after alignment
+  double max_ambiguity_ratio = 0.8;  ///< second-best (far in pose) / best consensus
+  std::size_t min_inliers = 40;      ///< on the full clouds
+  double min_inlier_ratio = 0.3;     ///< inliers / size of the smaller full cloud
+  double max_rms_m = 0.6;            ///< inlier RMS after ICP
+  int min_inlier_sectors = 4;        ///< of 8 bearing sectors around the query sensor
+  double min_sigma_m = 0.1;
+  double information_scale = 0.05;
+};
+
+/// Overrides `params` from the YAML keys of the same names.
+void loadParams(const YamlParams& yaml, LoopVerifierParams& params);
+
+struct LoopVerification {
+  bool accepted = false;
+  std::string reason;                 ///< why it was rejected (empty when accepted)
+  mrpt::math::TPose2D relative_pose;  ///< query keyframe in the candidate keyframe's frame
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();  ///< of relative_pose (x, y, phi)
+  double inlier_ratio = 0;                                ///< the fit score
+  std::size_t inliers = 0;
+  double rms_m = 0;
+  double ambiguity_ratio = 1;  ///< second-best / best consensus (lower = more unique)
+  int inlier_sectors = 0;
+};
+
+/// Verifies that `query` (a peak cloud in its sensor frame) was taken at the place of
+/// `candidate`, and finds the relative pose.
+LoopVerification verifyLoop(std::span<const RadarPoint> query, std::span<const RadarPoint> candidate,
+                            const LoopVerifierParams& params = {});
+
+}  // namespace radarslam

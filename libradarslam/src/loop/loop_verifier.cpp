@@ -1,0 +1,322 @@
+// Geometric loop verification: Hough/consensus rotation search, uniqueness test, CICP refinement
+// and acceptance tests (paper Sec. III-C); see loop_verifier.h.
+#include "radarslam/loop/loop_verifier.h"
+
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/poses/CPose2D.h>
+#include <mrpt/poses/CPosePDF.h>
+#include <mrpt/slam/CICP.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <nanoflann.hpp>
+#include <vector>
+
+#include "radarslam/core/errors.h"
+#include "radarslam/core/yaml_params.h"
+
+namespace radarslam {
+
+void loadParams(const YamlParams& yaml, LoopVerifierParams& p) {
+  auto getSize = [&](const char* key, std::size_t& v) {
+    int i = static_cast<int>(v);
+    yaml.get(key, i);
+    if (i < 0)
+      throw InputError(yaml.origin(), std::string("loop verifier: ").append(key).append(" must be >= 0"));
+    v = static_cast<std::size_t>(i);
+  };
+  yaml.get("voxel_m", p.voxel_m);
+  getSize("max_search_points", p.max_search_points);
+  yaml.get("rotation_steps", p.rotation_steps);
+  yaml.get("max_translation_m", p.max_translation_m);
+  yaml.get("vote_cell_m", p.vote_cell_m);
+  yaml.get("hypotheses", p.hypotheses);
+  yaml.get("suppression_distance_m", p.suppression_distance_m);
+  yaml.get("suppression_angle_deg", p.suppression_angle_deg);
+  yaml.get("inlier_distance_m", p.inlier_distance_m);
+  yaml.get("max_ambiguity_ratio", p.max_ambiguity_ratio);
+  getSize("min_inliers", p.min_inliers);
+  yaml.get("min_inlier_ratio", p.min_inlier_ratio);
+  yaml.get("max_rms_m", p.max_rms_m);
+  yaml.get("min_inlier_sectors", p.min_inlier_sectors);
+  yaml.get("min_sigma_m", p.min_sigma_m);
+  yaml.get("information_scale", p.information_scale);
+  if (p.rotation_steps < 4 || p.hypotheses < 1 || !(p.vote_cell_m > 0) || !(p.max_translation_m > 0) ||
+      !(p.inlier_distance_m > 0) || !(p.voxel_m >= 0) || p.max_search_points < 3)
+    throw InputError(yaml.origin(),
+                     "loop verifier: invalid parameter (rotation_steps >= 4, hypotheses >= 1, "
+                     "positive distances, max_search_points >= 3)");
+}
+
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+
+/// nanoflann kd-tree over 2D points.
+struct Cloud2D {
+  std::vector<Vec2> pts;
+  std::size_t kdtree_get_point_count() const { return pts.size(); }
+  double kdtree_get_pt(std::size_t i, std::size_t d) const { return pts[i][static_cast<int>(d)]; }
+  template <class BBOX>
+  bool kdtree_get_bbox(BBOX&) const {
+    return false;
+  }
+};
+using Tree2D = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud2D>, Cloud2D, 2,
+                                                   std::uint32_t>;
+
+struct Indexed {
+  Cloud2D cloud;
+  Tree2D tree;
+  explicit Indexed(std::vector<Vec2> p)
+      : cloud{std::move(p)}, tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
+    tree.buildIndex();
+  }
+  /// Squared distance to the nearest point and its index.
+  std::pair<double, std::uint32_t> nearest(const Vec2& q) const {
+    std::uint32_t idx = 0;
+    double d2 = 0;
+    tree.knnSearch(q.data(), 1, &idx, &d2);
+    return {d2, idx};
+  }
+};
+
+struct Pose {
+  double x = 0, y = 0, th = 0;
+  Vec2 apply(const Vec2& p) const {
+    const double c = std::cos(th), s = std::sin(th);
+    return {c * p.x() - s * p.y() + x, s * p.x() + c * p.y() + y};
+  }
+};
+
+double angleDiff(double a, double b) { return std::abs(std::remainder(a - b, 2 * M_PI)); }
+
+std::vector<Vec2> toVec(std::span<const RadarPoint> c) {
+  std::vector<Vec2> v;
+  v.reserve(c.size());
+  for (const auto& p : c) v.emplace_back(p.x, p.y);
+  return v;
+}
+
+/// One point per voxel (the strongest, ties by order), then an even stride down to max_points.
+std::vector<Vec2> thin(std::span<const RadarPoint> c, double voxel, std::size_t max_points) {
+  std::vector<Vec2> out;
+  if (voxel > 0) {
+    std::map<std::pair<long, long>, std::size_t> best;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const std::pair<long, long> key{std::lround(std::floor(c[i].x / voxel)),
+                                      std::lround(std::floor(c[i].y / voxel))};
+      auto [it, inserted] = best.emplace(key, i);
+      if (!inserted && c[i].power > c[it->second].power) it->second = i;
+    }
+    for (const auto& [key, i] : best) out.emplace_back(c[i].x, c[i].y);
+  } else {
+    out = toVec(c);
+  }
+  if (out.size() > max_points) {
+    std::vector<Vec2> s;
+    s.reserve(max_points);
+    for (std::size_t k = 0; k < max_points; ++k) s.push_back(out[k * out.size() / max_points]);
+    out.swap(s);
+  }
+  return out;
+}
+
+/// Closed-form 2D rigid fit of pairs (a_i -> b_i), b = R a + t.
+Pose fitRigid(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  Vec2 ma = Vec2::Zero(), mb = Vec2::Zero();
+  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
+  ma /= static_cast<double>(a.size()), mb /= static_cast<double>(a.size());
+  double sc = 0, ss = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const Vec2 p = a[i] - ma, q = b[i] - mb;
+    sc += p.x() * q.x() + p.y() * q.y();
+    ss += p.x() * q.y() - p.y() * q.x();
+  }
+  Pose r;
+  r.th = std::atan2(ss, sc);
+  const double c = std::cos(r.th), s = std::sin(r.th);
+  r.x = mb.x() - (c * ma.x() - s * ma.y());
+  r.y = mb.y() - (s * ma.x() + c * ma.y());
+  return r;
+}
+
+/// Short point-to-point ICP of `q` onto `c` from `pose`, gates shrinking to `gate`.
+Pose quickIcp(const std::vector<Vec2>& q, const Indexed& c, Pose pose, double gate) {
+  std::vector<Vec2> a, b;
+  for (int it = 0; it < 12; ++it) {
+    const double g = gate * std::max(1.0, 3.0 - 0.25 * it);
+    a.clear(), b.clear();
+    for (const auto& p : q) {
+      const Vec2 tp = pose.apply(p);
+      const auto [d2, idx] = c.nearest(tp);
+      if (d2 < g * g) a.push_back(p), b.push_back(c.cloud.pts[idx]);
+    }
+    if (a.size() < 3) break;
+    pose = fitRigid(a, b);
+  }
+  return pose;
+}
+
+std::size_t consensus(const std::vector<Vec2>& q, const Indexed& c, const Pose& pose, double gate) {
+  std::size_t n = 0;
+  for (const auto& p : q)
+    if (c.nearest(pose.apply(p)).first < gate * gate) ++n;
+  return n;
+}
+
+struct Hypothesis {
+  Pose pose;
+  int votes = 0;
+  std::size_t score = 0;
+};
+
+/// Per rotation, the strongest translation cell of the pair votes (2x2 window sums).
+std::vector<Hypothesis> houghHypotheses(const std::vector<Vec2>& q, const std::vector<Vec2>& c,
+                                        const LoopVerifierParams& p) {
+  const int half = static_cast<int>(std::ceil(p.max_translation_m / p.vote_cell_m));
+  const int side = 2 * half;
+  std::vector<int> grid(static_cast<std::size_t>(side * side));
+  std::vector<Hypothesis> hyps;
+  hyps.reserve(static_cast<std::size_t>(p.rotation_steps));
+  const double inv_cell = 1.0 / p.vote_cell_m;
+  for (int k = 0; k < p.rotation_steps; ++k) {
+    const double th = 2 * M_PI * k / p.rotation_steps;
+    const double cs = std::cos(th), sn = std::sin(th);
+    std::fill(grid.begin(), grid.end(), 0);
+    for (const auto& a : q) {
+      const double rx = cs * a.x() - sn * a.y(), ry = sn * a.x() + cs * a.y();
+      for (const auto& b : c) {
+        const int ix = static_cast<int>(std::floor((b.x() - rx) * inv_cell)) + half;
+        const int iy = static_cast<int>(std::floor((b.y() - ry) * inv_cell)) + half;
+        if (ix < 0 || iy < 0 || ix >= side || iy >= side) continue;
+        ++grid[static_cast<std::size_t>(iy * side + ix)];
+      }
+    }
+    Hypothesis h;
+    h.pose.th = th;
+    h.votes = -1;
+    for (int iy = 0; iy + 1 < side; ++iy)
+      for (int ix = 0; ix + 1 < side; ++ix) {
+        const std::size_t i = static_cast<std::size_t>(iy * side + ix);
+        const int v = grid[i] + grid[i + 1] + grid[i + static_cast<std::size_t>(side)] +
+                      grid[i + static_cast<std::size_t>(side) + 1];
+        if (v > h.votes) {
+          h.votes = v;
+          h.pose.x = (ix + 1 - half) * p.vote_cell_m;  // the corner shared by the 4 cells
+          h.pose.y = (iy + 1 - half) * p.vote_cell_m;
+        }
+      }
+    hyps.push_back(h);
+  }
+  return hyps;
+}
+
+bool near(const Pose& a, const Pose& b, const LoopVerifierParams& p) {
+  return std::hypot(a.x - b.x, a.y - b.y) < p.suppression_distance_m &&
+         angleDiff(a.th, b.th) < p.suppression_angle_deg * M_PI / 180.0;
+}
+
+mrpt::maps::CSimplePointsMap toMap(std::span<const RadarPoint> c) {
+  mrpt::maps::CSimplePointsMap m;
+  m.reserve(c.size());
+  for (const auto& p : c) m.insertPointFast(p.x, p.y, 0.f);
+  m.mark_as_modified();
+  return m;
+}
+
+}  // namespace
+
+LoopVerification verifyLoop(std::span<const RadarPoint> query, std::span<const RadarPoint> candidate,
+                            const LoopVerifierParams& params) {
+  LoopVerification out;
+  if (query.size() < params.min_inliers || candidate.size() < params.min_inliers) {
+    out.reason = "too few points";
+    return out;
+  }
+  // 1. Global search on thinned clouds.
+  const std::vector<Vec2> qs = thin(query, params.voxel_m, params.max_search_points);
+  const Indexed cs(thin(candidate, params.voxel_m, params.max_search_points));
+  std::vector<Hypothesis> all = houghHypotheses(qs, cs.cloud.pts, params);
+  std::stable_sort(all.begin(), all.end(),
+                   [](const Hypothesis& a, const Hypothesis& b) { return a.votes > b.votes; });
+  std::vector<Hypothesis> picked;
+  for (const auto& h : all) {
+    if (static_cast<int>(picked.size()) >= params.hypotheses) break;
+    if (std::none_of(picked.begin(), picked.end(),
+                     [&](const Hypothesis& o) { return near(h.pose, o.pose, params); }))
+      picked.push_back(h);
+  }
+  for (auto& h : picked) {
+    h.pose = quickIcp(qs, cs, h.pose, params.inlier_distance_m);
+    h.score = consensus(qs, cs, h.pose, params.inlier_distance_m);
+  }
+  std::stable_sort(picked.begin(), picked.end(),
+                   [](const Hypothesis& a, const Hypothesis& b) { return a.score > b.score; });
+  const Hypothesis& best = picked.front();
+  std::size_t second = 0;
+  for (std::size_t i = 1; i < picked.size(); ++i)
+    if (!near(picked[i].pose, best.pose, params)) second = std::max(second, picked[i].score);
+  out.ambiguity_ratio = best.score > 0 ? static_cast<double>(second) / static_cast<double>(best.score) : 1.0;
+
+  // 3. CICP refinement on the full clouds (the query aligned onto the candidate).
+  const mrpt::maps::CSimplePointsMap cmap = toMap(candidate), qmap = toMap(query);
+  mrpt::slam::CICP icp;
+  icp.options.ICP_algorithm = mrpt::slam::icpClassic;
+  icp.options.maxIterations = 80;
+  icp.options.thresholdDist = 2.0 * params.inlier_distance_m;
+  icp.options.thresholdAng = 0.0;
+  icp.options.smallestThresholdDist = 0.3 * params.inlier_distance_m;
+  icp.options.corresponding_points_decimation = 1;
+  const auto result = icp.Align(&cmap, &qmap, mrpt::poses::CPose2D(best.pose.x, best.pose.y, best.pose.th));
+  const mrpt::poses::CPose2D rel = result->getMeanVal();
+  const Pose pose{rel.x(), rel.y(), rel.phi()};
+  out.relative_pose = {rel.x(), rel.y(), rel.phi()};
+
+  // 4. Acceptance on the full clouds.
+  const Indexed cfull(toVec(candidate));
+  Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+  double sum2 = 0;
+  std::array<bool, 8> sectors{};
+  const double gate2 = params.inlier_distance_m * params.inlier_distance_m;
+  for (const auto& p : query) {
+    const Vec2 qp(p.x, p.y);
+    const Vec2 tp = pose.apply(qp);
+    const double d2 = cfull.nearest(tp).first;
+    if (d2 >= gate2) continue;
+    ++out.inliers;
+    sum2 += d2;
+    double bearing = std::atan2(qp.y(), qp.x());
+    if (bearing < 0) bearing += 2 * M_PI;
+    sectors[std::min<std::size_t>(7, static_cast<std::size_t>(bearing * 8 / (2 * M_PI)))] = true;
+    // d(R q + t)/d(x, y, th) = [I | (-(Rq)_y, (Rq)_x)]
+    const Vec2 rq = tp - Vec2(pose.x, pose.y);
+    Eigen::Matrix<double, 2, 3> J;
+    J << 1, 0, -rq.y(), 0, 1, rq.x();
+    jtj += J.transpose() * J;
+  }
+  out.inlier_sectors = static_cast<int>(std::count(sectors.begin(), sectors.end(), true));
+  out.rms_m = out.inliers > 0 ? std::sqrt(sum2 / static_cast<double>(out.inliers)) : 0.0;
+  out.inlier_ratio =
+      static_cast<double>(out.inliers) / static_cast<double>(std::min(query.size(), candidate.size()));
+  const double sigma = std::max(out.rms_m, params.min_sigma_m);
+  out.information = params.information_scale * jtj / (sigma * sigma);
+
+  if (out.ambiguity_ratio > params.max_ambiguity_ratio)
+    out.reason = "ambiguous place (a distant alignment scores almost as well)";
+  else if (out.inliers < params.min_inliers)
+    out.reason = "too few inliers";
+  else if (out.inlier_ratio < params.min_inlier_ratio)
+    out.reason = "low overlap";
+  else if (out.rms_m > params.max_rms_m)
+    out.reason = "large residual";
+  else if (out.inlier_sectors < params.min_inlier_sectors)
+    out.reason = "inliers not spread around the sensor";
+  out.accepted = out.reason.empty();
+  return out;
+}
+
+}  // namespace radarslam
