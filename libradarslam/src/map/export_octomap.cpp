@@ -1,0 +1,45 @@
+// OctoMap export: the keyframe points as a slab at z = 0, inserted per keyframe from its origin so
+// the rays carve free space (octomap::OcTree::insertPointCloud). Written through the stream API
+// into memory and then atomically, so nothing is printed to our stdout.
+#include <octomap/OcTree.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "radarslam/core/atomic_file.h"
+#include "radarslam/core/errors.h"
+#include "radarslam/map/map_exports.h"
+
+namespace radarslam {
+namespace fs = std::filesystem;
+
+std::vector<fs::path> exportOctomap(const KeyframeMap& map, const fs::path& dir, const std::string& stem,
+                                    const OctomapExportParams& params) {
+  if (!(params.resolution_m > 0)) throw InputError("octomap export", "resolution must be > 0");
+  octomap::OcTree tree(params.resolution_m);
+  for (const auto& kf : map.keyframes) {
+    octomap::Pointcloud cloud;
+    cloud.reserve(kf.points.size());
+    const double c = std::cos(kf.pose.phi), s = std::sin(kf.pose.phi);
+    for (const auto& p : kf.points)
+      cloud.push_back(static_cast<float>(kf.pose.x + c * p.x - s * p.y),
+                      static_cast<float>(kf.pose.y + s * p.x + c * p.y), 0.f);
+    tree.insertPointCloud(cloud,
+                          octomap::point3d(static_cast<float>(kf.pose.x), static_cast<float>(kf.pose.y), 0.f),
+                          params.max_range_m);
+  }
+  std::vector<fs::path> files;
+  auto write = [&](const std::string& ext, bool binary) {
+    const fs::path path = dir / (stem + ext);
+    std::ostringstream os(std::ios::binary);
+    const bool ok = binary ? tree.writeBinaryConst(os) : tree.write(os);
+    if (!ok) throw InputError(path.string(), "OctoMap serialisation failed");
+    writeTextAtomically(path, os.str());
+    files.push_back(path);
+  };
+  write(".bt", true);
+  write(".ot", false);
+  return files;
+}
+
+}  // namespace radarslam
