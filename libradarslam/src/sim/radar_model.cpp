@@ -93,15 +93,16 @@ double dbToLinear(double db) { return std::pow(10.0, db / 10.0); }
 /// hardware does (exponent + linear mantissa), times ~6.02 (= 20*log10(2)): 1 -> 0, 2 -> 6,
 /// 3 -> 9, 4 -> 12, 5 -> 14, 6 -> 15, ... as in the real Oxford PNGs.
 inline std::uint8_t amplitudeCode(float amplitude, float code_per_octave) {
-  const float a = std::floor(amplitude);
-  if (a < 2.0f) return 0;
-  const std::uint32_t u = std::bit_cast<std::uint32_t>(a);
+  // Branch-free so that the per-bin loop vectorises; truncation = floor for amplitude >= 0.
+  const int ai = static_cast<int>(amplitude);
+  const std::uint32_t u = std::bit_cast<std::uint32_t>(static_cast<float>(ai > 1 ? ai : 1));
   const float log2a =
       static_cast<float>(static_cast<int>(u >> 23) - 127) + static_cast<float>(u & 0x7FFFFF) * 0x1.0p-23f;
-  return static_cast<std::uint8_t>(std::min(255.0f, code_per_octave * log2a + 0.5f));
+  const int code = static_cast<int>(code_per_octave * log2a + 0.5f);
+  return static_cast<std::uint8_t>(ai > 1 ? (code < 255 ? code : 255) : 0);
 }
 
-/// Range response of a target with depth: Gaussian PSF convolved with an exponential tail,
+/// Range response of a target with depth: Gaussian PSF convolved with a finite depth profile,
 /// normalised to a peak of 1. Index 0 is `pre` bins before the target's bin.
 struct RangeKernel {
   int pre = 0;
@@ -153,7 +154,7 @@ struct RadarRenderer::Impl {
   int lobe_half = 0;        // main lobe reaches +-lobe_half azimuths
   double sidelobe = 0;
   std::map<int, RangeKernel> kernels;  // by depth in centimetres
-  std::vector<float> zr_prev, zi_prev, zr_cur, zi_cur;
+  std::vector<float> zr_prev, zi_prev, zr_cur, zi_cur, n1, n2;
   static constexpr int kLobeSteps = 32;
 
   Impl(const World& w, const Route& r, const RadarGeometry& geo, const RadarPhysics& phys, const Weather& wea,
@@ -193,7 +194,7 @@ struct RadarRenderer::Impl {
       const double side = sidelobe * std::exp(-3.5 * x / lobe_half);
       lobe[k] = static_cast<float>(std::max(main, side));
     }
-    zr_prev.resize(B), zi_prev.resize(B), zr_cur.resize(B), zi_cur.resize(B);
+    zr_prev.resize(B), zi_prev.resize(B), zr_cur.resize(B), zi_cur.resize(B), n1.resize(B), n2.resize(B);
   }
 
   const RangeKernel& kernel(double depth_m) {
@@ -343,25 +344,36 @@ struct RadarRenderer::Impl {
       const float* s = signal.data() + static_cast<std::size_t>(a) * B;
       const float* gr = ground.data() + static_cast<std::size_t>(a) * (B / kGroundStep + 1);
       std::uint8_t* px = out.power.data() + static_cast<std::size_t>(a) * B;
-      float zr = 0, zi = 0;
-      for (int b = 0; b < B; ++b) {
+      // Split into passes so that all but the recursion itself vectorises.
+      for (int b = 0; b < B; ++b) {  // white complex Gaussian innovations
         const std::uint64_t r = rng.next();
-        const float n1 = table[r >> 52], n2 = table[(r >> 40) & 4095];
-        if (a == 0) {  // first row: AR(1) along range only
-          zr = b == 0 ? n1 * std::sqrt(0.5f) : alpha * zr + innov_row * n1;
-          zi = b == 0 ? n2 * std::sqrt(0.5f) : alpha * zi + innov_row * n2;
-        } else if (b == 0) {
-          zr = beta * zr_prev[0] + innov_col * n1;
-          zi = beta * zi_prev[0] + innov_col * n2;
-        } else {  // separable 2D AR(1): correlation alpha^|db| * beta^|da|
-          zr = alpha * zr + beta * zr_prev[b] - alpha * beta * zr_prev[b - 1] + innov * n1;
-          zi = alpha * zi + beta * zi_prev[b] - alpha * beta * zi_prev[b - 1] + innov * n2;
+        n1[b] = table[r >> 52], n2[b] = table[(r >> 40) & 4095];
+      }
+      if (a == 0) {  // first row: AR(1) along range only
+        float zr = n1[0] * std::sqrt(0.5f), zi = n2[0] * std::sqrt(0.5f);
+        zr_cur[0] = zr, zi_cur[0] = zi;
+        for (int b = 1; b < B; ++b) {
+          zr = alpha * zr + innov_row * n1[b], zi = alpha * zi + innov_row * n2[b];
+          zr_cur[b] = zr, zi_cur[b] = zi;
         }
-        zr_cur[b] = zr, zi_cur[b] = zi;
+      } else {  // separable 2D AR(1): correlation alpha^|db| * beta^|da|
+        zr_cur[0] = beta * zr_prev[0] + innov_col * n1[0];
+        zi_cur[0] = beta * zi_prev[0] + innov_col * n2[0];
+        for (int b = 1; b < B; ++b) {
+          n1[b] = beta * zr_prev[b] - alpha * beta * zr_prev[b - 1] + innov * n1[b];
+          n2[b] = beta * zi_prev[b] - alpha * beta * zi_prev[b - 1] + innov * n2[b];
+        }
+        float zr = zr_cur[0], zi = zi_cur[0];
+        for (int b = 1; b < B; ++b) {
+          zr = alpha * zr + n1[b], zi = alpha * zi + n2[b];
+          zr_cur[b] = zr, zi_cur[b] = zi;
+        }
+      }
+      for (int b = 0; b < B; ++b) {
         const float mean =
             ((s[b] + near_clutter[b] + gr[b / kGroundStep]) * keep + (floor_power[b] + streak) * keep_floor) *
             gain;
-        const float amp = std::min(std::sqrt(mean * (zr * zr + zi * zi)), sat);
+        const float amp = std::min(std::sqrt(mean * (zr_cur[b] * zr_cur[b] + zi_cur[b] * zi_cur[b])), sat);
         px[b] = amplitudeCode(amp, cpo);
       }
       std::swap(zr_prev, zr_cur);
