@@ -16,8 +16,8 @@ namespace radarslam {
 class YamlParams;
 
 struct LoopDetectorParams {
-  float max_descriptor_distance = 0.3f;   ///< candidates must be closer than this (L2)
-  std::size_t max_candidates = 3;         ///< top-k
+  float max_descriptor_distance = 0.45f;  ///< candidates must be closer than this (L2)
+  std::size_t max_candidates = 5;         ///< top-k
   std::size_t exclude_recent = 30;        ///< never return the last N keyframes
   double exclude_recent_distance_m = 50;  ///< nor keyframes driven less than this before the query
 };

@@ -41,9 +41,9 @@ struct LoopVerifierParams {
   double suppression_distance_m = 3.0;  ///< hypotheses closer than this (and angle) are one
   double suppression_angle_deg = 15.0;
   double inlier_distance_m = 1.0;    ///< point-to-point inlier gate after alignment
-  double max_ambiguity_ratio = 0.8;  ///< second-best (far in pose) / best consensus
+  double max_ambiguity_ratio = 0.7;  ///< second-best (far in pose) / best consensus
   std::size_t min_inliers = 40;      ///< on the full clouds
-  double min_inlier_ratio = 0.3;     ///< inliers / size of the smaller full cloud
+  double min_inlier_ratio = 0.4;     ///< inliers / size of the smaller full cloud
   double max_rms_m = 0.6;            ///< inlier RMS after ICP
   int min_inlier_sectors = 4;        ///< of 8 bearing sectors around the query sensor
   double min_sigma_m = 0.1;
