@@ -59,6 +59,7 @@ for exe in "$build"/test/fuzz/fuzz_*; do
   log=$work/$target.log
   set +e
   ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
+    LSAN_OPTIONS="suppressions=$src/test/sanitizers/lsan.supp:print_suppressions=0" \
     "$exe" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2560 -max_len=$max_len \
     -print_final_stats=1 -artifact_prefix="$artifacts/$target-" >"$log" 2>&1
   rc=$?

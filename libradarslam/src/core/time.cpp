@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <limits>
 
 namespace radarslam {
 
@@ -30,11 +32,14 @@ bool parseStampByDigits(const std::string& text, StampNs& out) {
   if (!s.empty() && s.front() == '+') s.erase(0, 1);
   if (!allDigits(s) || s.size() > 19) return false;
   const std::size_t significant = s.size() - std::min(s.find_first_not_of('0'), s.size());
-  const std::int64_t v = std::stoll(s);
-  if (significant <= 10) out = v * kNsPerSec;
-  else if (significant <= 13) out = v * 1'000'000;
-  else if (significant <= 16) out = v * kNsPerUs;
-  else out = v;
+  // <= 19 digits fit in uint64; a value whose ns count overflows int64 is not a stamp (fuzzing).
+  const std::uint64_t v = std::stoull(s);
+  const std::int64_t unit = significant <= 10   ? kNsPerSec
+                            : significant <= 13 ? 1'000'000
+                            : significant <= 16 ? kNsPerUs
+                                                : 1;
+  if (v > static_cast<std::uint64_t>(std::numeric_limits<StampNs>::max() / unit)) return false;
+  out = static_cast<StampNs>(v) * unit;
   return true;
 }
 
@@ -48,7 +53,9 @@ bool parseSecondsDotFraction(const std::string& text, StampNs& out) {
   // RADIATE writes the nanosecond count without zero padding ("771.44660272" = 771.044660272 s);
   // its SDK left-pads the fraction to 9 digits, and so do we.
   frac.insert(0, 9 - frac.size(), '0');
-  out = std::stoll(whole) * kNsPerSec + std::stoll(frac);
+  const std::int64_t seconds = std::stoll(whole);
+  if (seconds > std::numeric_limits<StampNs>::max() / kNsPerSec - 1) return false;  // int64 ns overflow
+  out = seconds * kNsPerSec + std::stoll(frac);
   return true;
 }
 

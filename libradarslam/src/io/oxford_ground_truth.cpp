@@ -31,13 +31,13 @@ std::vector<OxfordOdometryRow> readOxfordOdometryRows(const std::filesystem::pat
                        "malformed row: expected 10 comma-separated fields, got " + std::to_string(f.size()));
     OxfordOdometryRow r;
     r.line = line_no;
-    r.source = parseInt(f[0], where, "source_timestamp") * kNsPerUs;
-    r.destination = parseInt(f[1], where, "destination_timestamp") * kNsPerUs;
+    r.source = parseMicroseconds(f[0], where, "source_timestamp");
+    r.destination = parseMicroseconds(f[1], where, "destination_timestamp");
     r.motion = {parseDouble(f[2], where, "x"), parseDouble(f[3], where, "y"),
                 parseDouble(f[7], where, "yaw")};
     for (int k : {4, 5, 6}) parseDouble(f[k], where, k == 4 ? "z" : (k == 5 ? "roll" : "pitch"));
-    r.source_radar = parseInt(f[8], where, "source_radar_timestamp") * kNsPerUs;
-    r.destination_radar = parseInt(f[9], where, "destination_radar_timestamp") * kNsPerUs;
+    r.source_radar = parseMicroseconds(f[8], where, "source_radar_timestamp");
+    r.destination_radar = parseMicroseconds(f[9], where, "destination_radar_timestamp");
     if (r.source <= r.destination)
       throw InputError(where, "source_timestamp must be later than destination_timestamp");
     rows.push_back(r);

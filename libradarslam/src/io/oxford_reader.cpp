@@ -33,7 +33,7 @@ std::vector<IndexEntry> readRadarTimestamps(const std::filesystem::path& root) {
     if (fields.empty() || fields.size() > 2)
       throw InputError(where, "malformed line: expected '<timestamp_us> <flag>'");
     IndexEntry e;
-    e.stamp = parseInt(fields[0], where, "timestamp") * kNsPerUs;
+    e.stamp = parseMicroseconds(fields[0], where, "timestamp");
     e.file = root / "radar" / (std::string(fields[0]) + ".png");
     if (!index.empty() && e.stamp <= index.back().stamp)
       throw InputError(where, "timestamps are not increasing (" + std::string(fields[0]) + " after " +

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include "radarslam/core/errors.h"
 
@@ -60,6 +61,15 @@ std::int64_t parseInt(std::string_view text, const std::string& where, const cha
   if (text.empty() || ec != std::errc() || ptr != last)
     throw InputError(where, std::string(field) + " is not an integer: '" + std::string(text) + "'");
   return v;
+}
+
+StampNs parseMicroseconds(std::string_view text, const std::string& where, const char* field) {
+  const std::int64_t us = parseInt(text, where, field);
+  constexpr std::int64_t kMaxUs = std::numeric_limits<StampNs>::max() / kNsPerUs;
+  if (us > kMaxUs || us < -kMaxUs)
+    throw InputError(where, std::string(field) + " is out of range for a time in microseconds: '" +
+                                std::string(text) + "'");
+  return us * kNsPerUs;
 }
 
 StampNs parseStamp(std::string_view text, const std::string& where, const char* field) {

@@ -26,6 +26,8 @@ std::string lineWhere(const std::filesystem::path& file, std::size_t line_no);
 /// Parse helpers: throw InputError(where, "<field name> is not a number: '<text>'").
 double parseDouble(std::string_view text, const std::string& where, const char* field);
 std::int64_t parseInt(std::string_view text, const std::string& where, const char* field);
+/// An integer count of microseconds as ns; throws like parseInt, and if the ns count overflows.
+StampNs parseMicroseconds(std::string_view text, const std::string& where, const char* field);
 /// A UNIX timestamp whose unit is given by its digit count (see parseStampByDigits).
 StampNs parseStamp(std::string_view text, const std::string& where, const char* field);
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <string_view>
@@ -138,6 +139,7 @@ bool parseStampText(const std::string& text, StampNs& out) {
   for (char c : whole) ns = ns * 10 + (c - '0');
   StampNs sub = 0;
   for (std::size_t i = 0; i < 9; ++i) sub = sub * 10 + (i < frac.size() ? frac[i] - '0' : 0);
+  if (ns > (std::numeric_limits<StampNs>::max() - sub) / kNsPerSec) return false;  // int64 ns overflow
   ns = ns * kNsPerSec + sub;
   out = negative ? -ns : ns;
   return true;

@@ -16,6 +16,9 @@ namespace {
 // Guards against absurd sizes in corrupt archives before allocating (RAS6 has 6848 bins).
 constexpr std::uint32_t kMaxAzimuths = 1u << 14;
 constexpr std::uint32_t kMaxBins = 1u << 16;
+// Found by fuzzing (docs/hardening.md): corrupt sizes must fail before a huge allocation.
+constexpr std::uint64_t kMaxCells = 1u << 26;       // 16x the largest real scan (400 x 6848)
+constexpr std::uint32_t kMaxLabelBytes = 1u << 12;  // MRPT's string reader trusts any uint32 length
 }  // namespace
 
 void CObservationRadarScan::resize(std::uint32_t azimuths, std::uint32_t bins) {
@@ -86,9 +89,16 @@ void CObservationRadarScan::serializeTo(mrpt::serialization::CArchive& out) cons
 
 void CObservationRadarScan::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version) {
   if (version != 0) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
-  in >> sensorLabel >> timestamp >> sensorPose;
+  std::uint32_t label_bytes = 0;  // the layout of `in >> sensorLabel`, with a bound on the length
+  in >> label_bytes;
+  if (label_bytes > kMaxLabelBytes) THROW_EXCEPTION_FMT("corrupt radar scan: label of %u bytes", label_bytes);
+  sensorLabel.resize(label_bytes);
+  if (label_bytes > 0 && in.ReadBuffer(sensorLabel.data(), label_bytes) != label_bytes)
+    throw mrpt::serialization::CExceptionEOF("radar scan label ends early");
+  in >> timestamp >> sensorPose;
   in >> num_azimuths >> num_bins >> range_resolution_m >> range_offset_m;
-  if (num_azimuths > kMaxAzimuths || num_bins > kMaxBins)
+  if (num_azimuths > kMaxAzimuths || num_bins > kMaxBins ||
+      static_cast<std::uint64_t>(num_azimuths) * num_bins > kMaxCells)
     THROW_EXCEPTION_FMT("corrupt radar scan: implausible size %ux%u", num_azimuths, num_bins);
   azimuth_stamps_ns.resize(num_azimuths);
   azimuth_angles_rad.resize(num_azimuths);
