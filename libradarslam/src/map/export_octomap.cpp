@@ -24,10 +24,12 @@ std::vector<fs::path> exportOctomap(const KeyframeMap& map, const fs::path& dir,
     for (const auto& p : kf.points)
       cloud.push_back(static_cast<float>(kf.pose.x + c * p.x - s * p.y),
                       static_cast<float>(kf.pose.y + s * p.x + c * p.y), 0.f);
+    // lazy_eval: inner nodes are updated once at the end; discretize: one ray per end voxel.
     tree.insertPointCloud(cloud,
                           octomap::point3d(static_cast<float>(kf.pose.x), static_cast<float>(kf.pose.y), 0.f),
-                          params.max_range_m);
+                          params.max_range_m, /*lazy_eval=*/true, /*discretize=*/true);
   }
+  tree.updateInnerOccupancy();
   std::vector<fs::path> files;
   auto write = [&](const std::string& ext, bool binary) {
     const fs::path path = dir / (stem + ext);

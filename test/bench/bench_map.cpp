@@ -1,0 +1,105 @@
+// Map save/load and export speed on a map of the size SLAM produces on a long drive: 1000
+// keyframes x 1500 points (Algorithm-1 clouds), a 192-float M2DP descriptor each.
+//   build-*/test/bench/bench_map
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include <unistd.h>
+
+#include "radarslam/map/map_exports.h"
+#include "radarslam/map/map_io.h"
+#include "radarslam/map/sha256.h"
+
+namespace fs = std::filesystem;
+using namespace radarslam;
+
+namespace {
+
+// Keyframes every 2 m along a 2 km loop, points up to 80 m around each.
+KeyframeMap bigMap(int keyframes, int points_per_keyframe) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> angle(0.f, 2 * float(M_PI)), range(3.f, 80.f), power(60.f, 255.f);
+  KeyframeMap map;
+  map.meta.created_ns = 1;
+  for (int k = 0; k < keyframes; ++k) {
+    Keyframe kf;
+    kf.id = k;
+    kf.stamp_ns = k * 250'000'000LL;
+    const double t = 2 * M_PI * k / keyframes;
+    kf.pose = {318.0 * std::cos(t), 318.0 * std::sin(t), t + M_PI / 2};
+    for (int i = 0; i < points_per_keyframe; ++i) {
+      const float a = angle(rng), r = range(rng);
+      kf.points.push_back({r * std::cos(a), r * std::sin(a), power(rng)});
+    }
+    kf.descriptor.assign(192, 0.5f);
+    if (k > 0)
+      map.edges.push_back({std::uint64_t(k - 1),
+                           std::uint64_t(k),
+                           {2, 0, 0.0063},
+                           {100, 0, 0, 0, 100, 0, 0, 0, 1000},
+                           EdgeKind::Odometry});
+    map.keyframes.push_back(std::move(kf));
+  }
+  return map;
+}
+
+struct BenchDir {
+  fs::path path = fs::temp_directory_path() / ("radarslam_bench_map_" + std::to_string(::getpid()));
+  ~BenchDir() { fs::remove_all(path); }
+};
+
+void BM_SaveMap(benchmark::State& state) {
+  const KeyframeMap map = bigMap(static_cast<int>(state.range(0)), 1500);
+  BenchDir dir;
+  for (auto _ : state) saveMap(map, dir.path / "m");
+  state.SetBytesProcessed(state.iterations() *
+                          static_cast<std::int64_t>(fs::file_size(dir.path / "m" / "keyframes.bin")));
+}
+BENCHMARK(BM_SaveMap)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+void BM_LoadMap(benchmark::State& state) {
+  BenchDir dir;
+  saveMap(bigMap(static_cast<int>(state.range(0)), 1500), dir.path / "m");
+  for (auto _ : state) benchmark::DoNotOptimize(loadMap(dir.path / "m"));
+  state.SetBytesProcessed(state.iterations() *
+                          static_cast<std::int64_t>(fs::file_size(dir.path / "m" / "keyframes.bin")));
+}
+BENCHMARK(BM_LoadMap)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+void BM_Sha256(benchmark::State& state) {
+  const std::string data(1 << 24, 'x');
+  for (auto _ : state) benchmark::DoNotOptimize(sha256Hex(data));
+  state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(data.size()));
+}
+BENCHMARK(BM_Sha256)->Unit(benchmark::kMillisecond);
+
+void BM_ExportGrid(benchmark::State& state) {
+  const KeyframeMap map = bigMap(static_cast<int>(state.range(0)), 1500);
+  BenchDir dir;
+  for (auto _ : state) exportOccupancyGrid(map, dir.path);
+}
+BENCHMARK(BM_ExportGrid)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+void BM_ExportOctomap(benchmark::State& state) {
+  const KeyframeMap map = bigMap(static_cast<int>(state.range(0)), 1500);
+  BenchDir dir;
+  for (auto _ : state) exportOctomap(map, dir.path);
+}
+BENCHMARK(BM_ExportOctomap)->Arg(50)->Unit(benchmark::kMillisecond);
+
+void BM_ExportCloudAndSimplemap(benchmark::State& state) {
+  const KeyframeMap map = bigMap(static_cast<int>(state.range(0)), 1500);
+  BenchDir dir;
+  for (auto _ : state) {
+    exportPointCloud(map, dir.path);
+    exportSimpleMap(map, dir.path);
+  }
+}
+BENCHMARK(BM_ExportCloudAndSimplemap)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
