@@ -65,6 +65,17 @@ TEST(MapIo, RoundTripIsExact) {
   EXPECT_EQ(fs::file_size(tmp / "m" / "keyframes.bin"), expected);
 }
 
+TEST(MapIo, TrailingSlashIsTheSameMap) {
+  radarslam::test::TempDir tmp;
+  const KeyframeMap a = radarslam::test::syntheticMap(2, 10), b = radarslam::test::syntheticMap(3, 10);
+  saveMap(a, tmp.path() / "m" / "");
+  EXPECT_TRUE(loadMap(tmp / "m") == a);
+  saveMap(b, tmp.path() / "m" / "");
+  EXPECT_TRUE(loadMap(tmp.path() / "m" / "") == b);
+  EXPECT_EQ(radarslam::mapTempDir(tmp.path() / "m" / ""), tmp / ".m.map-tmp");
+  for (const auto& e : fs::directory_iterator(tmp.path())) EXPECT_EQ(e.path().filename(), "m");
+}
+
 TEST(MapIo, EmptyMapRoundTrips) {
   radarslam::test::TempDir tmp;
   KeyframeMap map;

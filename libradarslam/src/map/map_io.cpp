@@ -44,11 +44,16 @@ void fsyncDirectory(const fs::path& dir) {
   ::close(fd);
 }
 
-fs::path parentOf(const fs::path& dir) { return dir.has_parent_path() ? dir.parent_path() : fs::path("."); }
+// "maps/x/" -> "maps/x" (a trailing slash would make parent_path() the map itself).
+fs::path withoutTrailingSlash(const fs::path& dir) { return dir.has_filename() ? dir : dir.parent_path(); }
+
+fs::path parentOf(const fs::path& dir_in) {
+  const fs::path dir = withoutTrailingSlash(dir_in);
+  return dir.has_parent_path() ? dir.parent_path() : fs::path(".");
+}
 
 std::string siblingName(const fs::path& dir, const char* suffix) {
-  fs::path d = dir;
-  if (!d.has_filename()) d = d.parent_path();  // "maps/x/" -> "maps/x"
+  const fs::path d = withoutTrailingSlash(dir);
   std::string name(1, '.');
   name.append(d.filename().string()).append(suffix);
   return name;
@@ -293,7 +298,8 @@ fs::path resolveMapPath(const std::string& name_or_path) {
   return local;
 }
 
-void saveMap(const KeyframeMap& map, const fs::path& dir, const MapSaveHooks& hooks) {
+void saveMap(const KeyframeMap& map, const fs::path& dir_in, const MapSaveHooks& hooks) {
+  const fs::path dir = withoutTrailingSlash(dir_in);
   const fs::path parent = parentOf(dir);
   const fs::path tmp = mapTempDir(dir);
   const fs::path backup = mapBackupDir(dir);
@@ -358,7 +364,8 @@ void saveMap(const KeyframeMap& map, const fs::path& dir, const MapSaveHooks& ho
   if (had_old) fs::remove_all(backup, ec);
 }
 
-KeyframeMap loadMap(const fs::path& dir) {
+KeyframeMap loadMap(const fs::path& dir_in) {
+  const fs::path dir = withoutTrailingSlash(dir_in);
   std::error_code ec;
   if (!hasManifest(dir)) {
     const fs::path backup = mapBackupDir(dir);
