@@ -10,6 +10,7 @@
 
 #include "radarslam/core/errors.h"
 #include "radarslam/map/map_io.h"
+#include "radarslam/map/sha256.h"
 #include "synthetic_map.h"
 #include "temp_dir.h"
 
@@ -131,6 +132,26 @@ TEST(MapIo, NewerFormatVersionIsRejected) {
   text.replace(pos, 18, "format_version: 2\n");
   writeAll(manifest, text);
   expectLoadError(tmp / "m", {"manifest.yaml", "version 2 is newer"});
+}
+
+// A .bin file of a newer version is refused even when its checksum is consistent (manifest fixed).
+TEST(MapIo, NewerBinaryFileVersionIsRejected) {
+  radarslam::test::TempDir tmp;
+  saveMap(radarslam::test::syntheticMap(2, 10), tmp / "m");
+  const fs::path kf = tmp / "m" / "keyframes.bin";
+  const std::string old_bytes = readAll(kf);
+  std::string bytes = old_bytes;
+  ASSERT_EQ(bytes.substr(0, 8), "RSLMKEYF");
+  bytes[8] = 2;  // u32 version, little-endian, at offset 8
+  writeAll(kf, bytes);
+  const fs::path manifest = tmp / "m" / "manifest.yaml";
+  std::string text = readAll(manifest);
+  const std::string old_sha = radarslam::sha256Hex(old_bytes);
+  const auto pos = text.find(old_sha);
+  ASSERT_NE(pos, std::string::npos);
+  text.replace(pos, old_sha.size(), radarslam::sha256Hex(bytes));
+  writeAll(manifest, text);
+  expectLoadError(tmp / "m", {"keyframes.bin", "format version 2 is newer"});
 }
 
 TEST(MapIo, NotAMapDirectory) {
