@@ -53,6 +53,7 @@ class Reader {
                                   .append(std::to_string(bytes_.size()))
                                   .append(" while reading ")
                                   .append(what));
+    if (n == 0) return;  // p may be an empty vector's data() == nullptr: memcpy(nullptr, .., 0) is UB (UBSan)
     std::memcpy(p, bytes_.data() + pos_, n);
     pos_ += n;
   }
