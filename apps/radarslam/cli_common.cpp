@@ -24,8 +24,9 @@ void CommandLine::parse(int argc, char** argv) {
   try {
     cmd_.parse(argc, argv);
   } catch (TCLAP::ArgException& e) {
-    throw InputError(name_, e.error() + (e.argId().empty() || e.argId() == " " ? "" : " (" + e.argId() + ")") +
-                                "; see --help");
+    throw InputError(
+        name_,
+        e.error() + (e.argId().empty() || e.argId() == " " ? "" : " (" + e.argId() + ")") + "; see --help");
   }
   logger().setMinLoggingLevel(parseVerbosity(verbosity_.getValue()));
 }

@@ -25,10 +25,10 @@ inline bool inCI() {
 }  // namespace radarslam::test
 
 /// Use at the top of a test: sets `var` to ../shared/data/real/<sub> or skips/fails.
-#define RADARSLAM_REQUIRE_REAL_DATA(var, sub)                                                           \
-  const std::filesystem::path var = ::radarslam::test::realDataDir() / (sub);                          \
-  if (!std::filesystem::exists(var)) {                                                                  \
-    if (::radarslam::test::inCI()) FAIL() << "real data missing in CI: " << var;                        \
-    GTEST_SKIP() << "real data not found at " << var                                                    \
-                 << " (clone the project next to ../shared or set RADARSLAM_SHARED_DIR)";               \
+#define RADARSLAM_REQUIRE_REAL_DATA(var, sub)                                             \
+  const std::filesystem::path var = ::radarslam::test::realDataDir() / (sub);             \
+  if (!std::filesystem::exists(var)) {                                                    \
+    if (::radarslam::test::inCI()) FAIL() << "real data missing in CI: " << var;          \
+    GTEST_SKIP() << "real data not found at " << var                                      \
+                 << " (clone the project next to ../shared or set RADARSLAM_SHARED_DIR)"; \
   }

@@ -16,7 +16,8 @@ void printToStderr(std::string_view msg, mrpt::system::VerbosityLevel level, std
   const int idx = std::clamp(static_cast<int>(level), 0, 3);
   std::string text(msg);
   while (!text.empty() && text.back() == '\n') text.pop_back();
-  std::fprintf(stderr, "[%.*s] %s: %s\n", static_cast<int>(name.size()), name.data(), kLevel[idx], text.c_str());
+  std::fprintf(stderr, "[%.*s] %s: %s\n", static_cast<int>(name.size()), name.data(), kLevel[idx],
+               text.c_str());
 }
 }  // namespace
 

@@ -28,8 +28,10 @@ void collectKeys(const Node& n, const std::string& prefix, std::set<std::string>
   if (!n.isMap()) return;
   for (const auto& [k, v] : n.asMap()) {
     const std::string key = prefix + k.as<std::string>();
-    if (v.isMap() && !v.asMap().empty()) collectKeys(v, key + ".", out);
-    else out.insert(key);
+    if (v.isMap() && !v.asMap().empty())
+      collectKeys(v, key + ".", out);
+    else
+      out.insert(key);
   }
 }
 
@@ -105,8 +107,7 @@ YamlParams YamlParams::section(const std::string& key) const {
 
 std::string YamlParams::scalarText(const std::string& key) const {
   const Node* c = child(asNode(node_), key);
-  if (!c->isScalar())
-    throw InputError(impl_->origin, "key '" + prefix_ + key + "' must be a single value");
+  if (!c->isScalar()) throw InputError(impl_->origin, "key '" + prefix_ + key + "' must be a single value");
   return trim(c->as<std::string>());
 }
 
@@ -157,9 +158,12 @@ void YamlParams::get(const std::string& key, unsigned& value) const {
 void YamlParams::get(const std::string& key, bool& value) const {
   if (!has(key)) return;
   const std::string t = scalarText(key);
-  if (t == "true" || t == "True" || t == "yes" || t == "on" || t == "1") value = true;
-  else if (t == "false" || t == "False" || t == "no" || t == "off" || t == "0") value = false;
-  else badValue(impl_->origin, prefix_ + key, t, "true or false");
+  if (t == "true" || t == "True" || t == "yes" || t == "on" || t == "1")
+    value = true;
+  else if (t == "false" || t == "False" || t == "no" || t == "off" || t == "0")
+    value = false;
+  else
+    badValue(impl_->origin, prefix_ + key, t, "true or false");
   markUsed(key);
 }
 

@@ -43,7 +43,8 @@ void CObservationRadarScan::updateReferenceTime() { timestamp = toMrptTime(refSt
 
 std::string CObservationRadarScan::checkConsistency() const {
   std::ostringstream why;
-  if (num_azimuths == 0 || num_bins == 0) why << "empty scan (" << num_azimuths << "x" << num_bins << ")";
+  if (num_azimuths == 0 || num_bins == 0)
+    why << "empty scan (" << num_azimuths << "x" << num_bins << ")";
   else if (num_azimuths > kMaxAzimuths || num_bins > kMaxBins)
     why << "implausible size " << num_azimuths << "x" << num_bins;
   else if (power.size() != static_cast<std::size_t>(num_azimuths) * num_bins)

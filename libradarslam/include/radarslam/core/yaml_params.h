@@ -42,9 +42,9 @@ class YamlParams {
 
  private:
   struct Impl;
-  std::shared_ptr<Impl> impl_;        // the parsed document, shared by all sections
-  std::string prefix_;                // "frontend." for a section
-  std::shared_ptr<void> node_;        // this section's node (mrpt yaml node), type-erased
+  std::shared_ptr<Impl> impl_;  // the parsed document, shared by all sections
+  std::string prefix_;          // "frontend." for a section
+  std::shared_ptr<void> node_;  // this section's node (mrpt yaml node), type-erased
   std::string scalarText(const std::string& key) const;
   void markUsed(const std::string& key) const;
 };

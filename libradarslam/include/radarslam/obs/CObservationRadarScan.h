@@ -35,9 +35,9 @@ class CObservationRadarScan : public mrpt::obs::CObservation {
 
   // --- data (row-major num_azimuths x num_bins) --------------------------------------------
   std::vector<std::uint8_t> power;
-  std::vector<StampNs> azimuth_stamps_ns;  ///< per azimuth, ns UNIX
-  std::vector<double> azimuth_angles_rad;  ///< per azimuth, see the angle convention above
-  std::vector<std::uint8_t> azimuth_valid; ///< 1 = genuine reading, 0 = interpolated/unknown
+  std::vector<StampNs> azimuth_stamps_ns;   ///< per azimuth, ns UNIX
+  std::vector<double> azimuth_angles_rad;   ///< per azimuth, see the angle convention above
+  std::vector<std::uint8_t> azimuth_valid;  ///< 1 = genuine reading, 0 = interpolated/unknown
 
   /// Pose of the radar on the vehicle (identity when poses are given for the radar itself).
   mrpt::poses::CPose3D sensorPose;
@@ -49,7 +49,9 @@ class CObservationRadarScan : public mrpt::obs::CObservation {
     return {power.data() + azimuth * num_bins, num_bins};
   }
   std::span<std::uint8_t> row(std::size_t azimuth) { return {power.data() + azimuth * num_bins, num_bins}; }
-  double binRange(std::size_t bin) const { return range_offset_m + static_cast<double>(bin) * range_resolution_m; }
+  double binRange(std::size_t bin) const {
+    return range_offset_m + static_cast<double>(bin) * range_resolution_m;
+  }
   double maxRange() const { return binRange(num_bins); }
 
   /// Midpoint of the first and last azimuth stamps (the scan's reference time, see above).
