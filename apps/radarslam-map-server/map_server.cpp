@@ -1,0 +1,122 @@
+#include "map_server.h"
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+
+#include <radarslam/core/errors.h>
+#include <radarslam/core/log.h>
+#include <radarslam/dds/map_messages.h>
+#include <radarslam/map/map_io.h>
+#include <radarslam/map/sha256.h>
+
+namespace radarslam::map_server {
+
+namespace fs = std::filesystem;
+using mrpt::system::LVL_INFO;
+using mrpt::system::LVL_WARN;
+
+Layers parseLayers(const std::string& text) {
+  Layers l{false, false, false};
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (item == "grid")
+      l.grid = true;
+    else if (item == "cloud")
+      l.cloud = true;
+    else if (item == "octomap")
+      l.octomap = true;
+    else
+      throw InputError("--layers", "unknown layer '" + item + "' (use grid, cloud, octomap)");
+  }
+  return l;
+}
+
+std::optional<std::string> manifestSha256(const fs::path& map_dir) {
+  std::ifstream in(map_dir / "manifest.yaml", std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return sha256Hex(ss.str());
+}
+
+MapServer::MapServer(dds::Domain& domain, ServerParams params) : domain_(domain), params_(std::move(params)) {
+  map_name_ = params_.map_dir.lexically_normal().filename().string();
+  if (map_name_.empty()) map_name_ = params_.map_dir.lexically_normal().parent_path().filename().string();
+  const auto latched = dds::TopicQos::latched();
+  if (params_.layers.grid)
+    grid_pub_ = std::make_unique<dds::Publisher<dds::OccupancyGridMsg>>(domain_, dds::kMapTopic, latched);
+  if (params_.layers.cloud)
+    cloud_pub_ = std::make_unique<dds::Publisher<dds::PointCloud2Msg>>(domain_, dds::kCloudMapTopic, latched);
+  if (params_.layers.octomap)
+    octomap_pub_ = std::make_unique<dds::Publisher<dds::OctomapMsg>>(domain_, dds::kOctomapTopic, latched);
+  info_pub_ = std::make_unique<dds::Publisher<dds::MapInfoMsg>>(domain_, dds::kMapInfoTopic, latched);
+}
+
+void MapServer::load() {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto before = manifestSha256(params_.map_dir);
+  const KeyframeMap map = loadMap(params_.map_dir);  // throws InputError naming the file
+  const auto after = manifestSha256(params_.map_dir);
+  if (!before || before != after)
+    throw InputError(params_.map_dir.string(), "the map changed while it was being read");
+  const StampNs now = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                          std::chrono::system_clock::now().time_since_epoch())
+                          .count();
+  dds::MapInfoMsg info;
+  info.header = {dds::toTimeMsg(now), dds::kMapFrame};
+  info.map_name = map_name_;
+  info.format_version = map.meta.format_version;
+  info.keyframes = static_cast<std::uint32_t>(map.keyframes.size());
+  info.revision = revision_ + 1;
+  info.manifest_sha256 = *after;
+  info.created = dds::toTimeMsg(map.meta.created_ns);
+
+  // Build every message first, then publish them back to back (subscribers see a consistent set
+  // as soon as possible; MapInfo goes last and names the grid's checksum).
+  std::string summary;
+  std::optional<dds::OccupancyGridMsg> grid;
+  std::optional<dds::PointCloud2Msg> cloud;
+  std::optional<dds::OctomapMsg> octo;
+  if (grid_pub_) {
+    grid = dds::gridMessage(map, params_.grid, now);
+    info.grid_sha256 = dds::gridSha256(*grid);
+    summary += "grid " + std::to_string(grid->width) + "x" + std::to_string(grid->height) + ", ";
+  }
+  if (cloud_pub_) {
+    cloud = dds::cloudMessage(map, now);
+    summary += "cloud " + std::to_string(cloud->width) + " points, ";
+  }
+  if (octomap_pub_) {
+    octo = dds::octomapMessage(map, params_.octomap, now);
+    summary += "octomap " + std::to_string(octo->data.size()) + " bytes, ";
+  }
+  if (grid) grid_pub_->publish(*grid);
+  if (cloud) cloud_pub_->publish(*cloud);
+  if (octo) octomap_pub_->publish(*octo);
+  info_pub_->publish(info);
+  revision_ = info.revision;
+  loaded_manifest_sha_ = *after;
+  failed_manifest_sha_.clear();
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  logger().logFmt(LVL_INFO, "published map '%s' revision %u (%u keyframes): %sin %.2f s", map_name_.c_str(),
+                  revision_, info.keyframes, summary.c_str(), secs);
+}
+
+bool MapServer::reloadIfChanged() {
+  const auto sha = manifestSha256(params_.map_dir);
+  if (!sha || *sha == loaded_manifest_sha_) return false;
+  try {
+    logger().logFmt(LVL_INFO, "map '%s' changed on disk, reloading", map_name_.c_str());
+    load();
+    return true;
+  } catch (const InputError& e) {
+    if (*sha != failed_manifest_sha_)
+      logger().logFmt(LVL_WARN, "keeping revision %u: %s (will retry)", revision_, e.what());
+    failed_manifest_sha_ = *sha;
+    return false;
+  }
+}
+
+}  // namespace radarslam::map_server

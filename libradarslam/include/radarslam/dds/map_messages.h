@@ -1,0 +1,47 @@
+#pragma once
+// Conversions between a KeyframeMap (map/keyframe_map.h, exports in map/map_exports.h) and the
+// map messages the map server publishes, and from received messages to the usual files
+// (grid PNG/PGM + ROS map_server YAML, PCD, OctoMap .bt). Files are written atomically.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "radarslam/dds/messages.h"
+#include "radarslam/map/keyframe_map.h"
+#include "radarslam/map/map_exports.h"
+
+namespace radarslam::dds {
+
+/// Frame of everything the map server publishes.
+inline constexpr const char* kMapFrame = "map";
+
+/// nav_msgs/OccupancyGrid of buildOccupancy(map): cell = round(100 * P(occupied)), -1 where the
+/// map never observed the cell (P = 0.5 exactly), row 0 = lowest y, origin = grid corner.
+OccupancyGridMsg gridMessage(const KeyframeMap& map, const GridExportParams& params, StampNs stamp);
+
+/// sensor_msgs/PointCloud2 of every keyframe point in the map frame: fields x, y, z (= 0),
+/// intensity (= power), FLOAT32, little-endian, point_step 16, height 1.
+PointCloud2Msg cloudMessage(const KeyframeMap& map, StampNs stamp);
+
+/// octomap_msgs/Octomap (binary) of exportOctomap(map): data = OcTree::writeBinaryData.
+OctomapMsg octomapMessage(const KeyframeMap& map, const OctomapExportParams& params, StampNs stamp);
+
+/// SHA-256 (64 hex) of the grid cells (the int8 bytes of OccupancyGridMsg::data).
+std::string gridSha256(const OccupancyGridMsg& grid);
+
+/// Writes STEM.pgm, STEM.png (pixel = 255 * P(free), 205 for unknown cells, top row = highest y)
+/// and STEM.yaml (ROS map_server: image STEM.pgm, resolution, origin, negate 0, thresholds,
+/// mode scale) into `dir`. Throws InputError if the message is inconsistent (size != w*h).
+std::vector<std::filesystem::path> writeGridFiles(const OccupancyGridMsg& grid,
+                                                  const std::filesystem::path& dir,
+                                                  const std::string& stem = "grid");
+
+/// Writes a PCD v0.7 (DATA binary) with the message's FLOAT32 fields. Throws InputError if the
+/// message is inconsistent or has a field that is not FLOAT32 with count 1.
+void writePcdFile(const PointCloud2Msg& cloud, const std::filesystem::path& path);
+
+/// Writes an OctoMap .bt file (readable by octovis / octomap::OcTree::readBinary). Throws
+/// InputError if the message is not a binary OcTree or its data does not parse.
+void writeOctomapFile(const OctomapMsg& octomap, const std::filesystem::path& path);
+
+}  // namespace radarslam::dds

@@ -1,0 +1,122 @@
+#pragma once
+// C++ value types of the DDS messages in share/idl (ROS 2 wire-compatible: builtin_interfaces,
+// std_msgs, geometry_msgs, nav_msgs, sensor_msgs, octomap_msgs; plus radarslam/msg). They mirror
+// the IDL field by field; dds/domain.h converts them to and from the idlc-generated C types, so
+// no other code includes Cyclone DDS headers.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "radarslam/core/time.h"
+
+namespace radarslam::dds {
+
+/// DDS topic names. ROS 2 prefixes topics with "rt": ROS topic /map is DDS topic rt/map.
+inline constexpr const char* kMapTopic = "rt/map";
+inline constexpr const char* kCloudMapTopic = "rt/radarslam/cloud_map";
+inline constexpr const char* kOctomapTopic = "rt/radarslam/octomap";
+inline constexpr const char* kMapInfoTopic = "rt/radarslam/map_info";
+inline constexpr const char* kPoseTopic = "rt/radarslam/pose";
+inline constexpr const char* kRadarScanTopic = "rt/radarslam/radar_scan";
+
+/// builtin_interfaces/Time.
+struct TimeMsg {
+  std::int32_t sec = 0;
+  std::uint32_t nanosec = 0;
+  bool operator==(const TimeMsg&) const = default;
+};
+TimeMsg toTimeMsg(StampNs t);
+StampNs fromTimeMsg(const TimeMsg& t);
+
+/// std_msgs/Header.
+struct HeaderMsg {
+  TimeMsg stamp;
+  std::string frame_id;
+  bool operator==(const HeaderMsg&) const = default;
+};
+
+/// geometry_msgs/Pose (position + orientation quaternion).
+struct PoseMsg {
+  double x = 0, y = 0, z = 0;
+  double qx = 0, qy = 0, qz = 0, qw = 1;
+  bool operator==(const PoseMsg&) const = default;
+};
+
+/// nav_msgs/OccupancyGrid (with MapMetaData flattened into the fields below).
+struct OccupancyGridMsg {
+  HeaderMsg header;
+  TimeMsg map_load_time;
+  float resolution = 0.f;  ///< m per cell
+  std::uint32_t width = 0, height = 0;
+  PoseMsg origin;                 ///< corner of cell (0,0) in the map frame
+  std::vector<std::int8_t> data;  ///< row-major, row 0 = lowest y; 0..100 P(occupied) %, -1 unknown
+  bool operator==(const OccupancyGridMsg&) const = default;
+};
+
+/// sensor_msgs/PointField; datatype values as in ROS (FLOAT32 = 7).
+struct PointFieldMsg {
+  static constexpr std::uint8_t kFloat32 = 7;
+  std::string name;
+  std::uint32_t offset = 0;
+  std::uint8_t datatype = kFloat32;
+  std::uint32_t count = 1;
+  bool operator==(const PointFieldMsg&) const = default;
+};
+
+/// sensor_msgs/PointCloud2.
+struct PointCloud2Msg {
+  HeaderMsg header;
+  std::uint32_t height = 1, width = 0;
+  std::vector<PointFieldMsg> fields;
+  bool is_bigendian = false;
+  std::uint32_t point_step = 0, row_step = 0;
+  std::vector<std::uint8_t> data;
+  bool is_dense = true;
+  bool operator==(const PointCloud2Msg&) const = default;
+};
+
+/// octomap_msgs/Octomap (binary = true: data is OcTree::writeBinaryData, i.e. a .bt file's body).
+struct OctomapMsg {
+  HeaderMsg header;
+  bool binary = true;
+  std::string id = "OcTree";
+  double resolution = 0;
+  std::vector<std::int8_t> data;
+  bool operator==(const OctomapMsg&) const = default;
+};
+
+/// geometry_msgs/PoseWithCovarianceStamped.
+struct PoseWithCovarianceStampedMsg {
+  HeaderMsg header;
+  PoseMsg pose;
+  std::array<double, 36> covariance{};  ///< row-major 6x6 over (x, y, z, rot x, rot y, rot z)
+  bool operator==(const PoseWithCovarianceStampedMsg&) const = default;
+};
+
+/// radarslam/MapInfo: which map the server publishes; grid_sha256 ties it to the rt/map grid.
+struct MapInfoMsg {
+  HeaderMsg header;
+  std::string map_name;
+  std::uint32_t format_version = 0;
+  std::uint32_t keyframes = 0;
+  std::uint32_t revision = 0;   ///< increments on every (re)load by the server
+  std::string grid_sha256;      ///< SHA-256 (hex) of OccupancyGridMsg::data
+  std::string manifest_sha256;  ///< SHA-256 (hex) of the map's manifest.yaml
+  TimeMsg created;              ///< map creation time
+  bool operator==(const MapInfoMsg&) const = default;
+};
+
+/// radarslam/RadarScan: one polar sweep (see CObservationRadarScan and dds/scan_messages.h).
+struct RadarScanMsg {
+  HeaderMsg header;  ///< stamp = reference time, frame_id = sensor frame
+  std::uint32_t num_azimuths = 0, num_bins = 0;
+  double range_resolution = 0, range_offset = 0;
+  std::vector<std::int64_t> azimuth_stamps_ns;
+  std::vector<double> azimuth_angles;
+  std::vector<std::uint8_t> azimuth_valid;
+  std::vector<std::uint8_t> power;
+  bool operator==(const RadarScanMsg&) const = default;
+};
+
+}  // namespace radarslam::dds

@@ -1,0 +1,210 @@
+#include "c_types.h"
+
+#include <algorithm>
+#include <string>
+
+namespace radarslam::dds::detail {
+
+namespace {
+
+char* view(const std::string& s) { return const_cast<char*>(s.c_str()); }
+
+template <class Seq, class T>
+void viewSeq(Seq& seq, const std::vector<T>& v) {
+  using Elem = std::remove_pointer_t<decltype(seq._buffer)>;
+  static_assert(sizeof(Elem) == sizeof(T));
+  seq._maximum = seq._length = static_cast<std::uint32_t>(v.size());
+  seq._buffer = reinterpret_cast<Elem*>(const_cast<T*>(v.data()));
+  seq._release = false;
+}
+
+template <class T, class Seq>
+std::vector<T> copySeq(const Seq& seq) {
+  using Elem = std::remove_pointer_t<decltype(seq._buffer)>;
+  static_assert(sizeof(Elem) == sizeof(T));
+  std::vector<T> out(seq._length);
+  if (seq._length > 0) std::copy_n(reinterpret_cast<const T*>(seq._buffer), seq._length, out.data());
+  return out;
+}
+
+std::string copyStr(const char* s) { return s ? std::string(s) : std::string(); }
+
+void toC(const TimeMsg& t, builtin_interfaces_msg_dds__Time_& out) {
+  out.sec = t.sec;
+  out.nanosec = t.nanosec;
+}
+TimeMsg fromC(const builtin_interfaces_msg_dds__Time_& in) { return {in.sec, in.nanosec}; }
+
+void toC(const HeaderMsg& h, std_msgs_msg_dds__Header_& out) {
+  toC(h.stamp, out.stamp);
+  out.frame_id = view(h.frame_id);
+}
+HeaderMsg fromC(const std_msgs_msg_dds__Header_& in) { return {fromC(in.stamp), copyStr(in.frame_id)}; }
+
+void toC(const PoseMsg& p, geometry_msgs_msg_dds__Pose_& out) {
+  out.position = {p.x, p.y, p.z};
+  out.orientation = {p.qx, p.qy, p.qz, p.qw};
+}
+PoseMsg fromC(const geometry_msgs_msg_dds__Pose_& in) {
+  return {in.position.x,    in.position.y,    in.position.z,   in.orientation.x,
+          in.orientation.y, in.orientation.z, in.orientation.w};
+}
+
+}  // namespace
+
+// --- nav_msgs/OccupancyGrid -------------------------------------------------------------------
+template <>
+void toC(const OccupancyGridMsg& m, nav_msgs_msg_dds__OccupancyGrid_& out,
+         std::vector<sensor_msgs_msg_dds__PointField_>&) {
+  toC(m.header, out.header);
+  toC(m.map_load_time, out.info.map_load_time);
+  out.info.resolution = m.resolution;
+  out.info.width = m.width;
+  out.info.height = m.height;
+  toC(m.origin, out.info.origin);
+  viewSeq(out.data, m.data);
+}
+template <>
+OccupancyGridMsg fromC(const nav_msgs_msg_dds__OccupancyGrid_& in) {
+  OccupancyGridMsg m;
+  m.header = fromC(in.header);
+  m.map_load_time = fromC(in.info.map_load_time);
+  m.resolution = in.info.resolution;
+  m.width = in.info.width;
+  m.height = in.info.height;
+  m.origin = fromC(in.info.origin);
+  m.data = copySeq<std::int8_t>(in.data);
+  return m;
+}
+
+// --- sensor_msgs/PointCloud2 ------------------------------------------------------------------
+template <>
+void toC(const PointCloud2Msg& m, sensor_msgs_msg_dds__PointCloud2_& out,
+         std::vector<sensor_msgs_msg_dds__PointField_>& storage) {
+  toC(m.header, out.header);
+  out.height = m.height;
+  out.width = m.width;
+  storage.clear();
+  for (const auto& f : m.fields) storage.push_back({view(f.name), f.offset, f.datatype, f.count});
+  out.fields._maximum = out.fields._length = static_cast<std::uint32_t>(storage.size());
+  out.fields._buffer = storage.data();
+  out.fields._release = false;
+  out.is_bigendian = m.is_bigendian;
+  out.point_step = m.point_step;
+  out.row_step = m.row_step;
+  viewSeq(out.data, m.data);
+  out.is_dense = m.is_dense;
+}
+template <>
+PointCloud2Msg fromC(const sensor_msgs_msg_dds__PointCloud2_& in) {
+  PointCloud2Msg m;
+  m.header = fromC(in.header);
+  m.height = in.height;
+  m.width = in.width;
+  for (std::uint32_t i = 0; i < in.fields._length; ++i) {
+    const auto& f = in.fields._buffer[i];
+    m.fields.push_back({copyStr(f.name), f.offset, f.datatype, f.count});
+  }
+  m.is_bigendian = in.is_bigendian;
+  m.point_step = in.point_step;
+  m.row_step = in.row_step;
+  m.data = copySeq<std::uint8_t>(in.data);
+  m.is_dense = in.is_dense;
+  return m;
+}
+
+// --- octomap_msgs/Octomap ---------------------------------------------------------------------
+template <>
+void toC(const OctomapMsg& m, octomap_msgs_msg_dds__Octomap_& out,
+         std::vector<sensor_msgs_msg_dds__PointField_>&) {
+  toC(m.header, out.header);
+  out.binary = m.binary;
+  out.id = view(m.id);
+  out.resolution = m.resolution;
+  viewSeq(out.data, m.data);
+}
+template <>
+OctomapMsg fromC(const octomap_msgs_msg_dds__Octomap_& in) {
+  OctomapMsg m;
+  m.header = fromC(in.header);
+  m.binary = in.binary;
+  m.id = copyStr(in.id);
+  m.resolution = in.resolution;
+  m.data = copySeq<std::int8_t>(in.data);
+  return m;
+}
+
+// --- geometry_msgs/PoseWithCovarianceStamped --------------------------------------------------
+template <>
+void toC(const PoseWithCovarianceStampedMsg& m, geometry_msgs_msg_dds__PoseWithCovarianceStamped_& out,
+         std::vector<sensor_msgs_msg_dds__PointField_>&) {
+  toC(m.header, out.header);
+  toC(m.pose, out.pose.pose);
+  std::copy(m.covariance.begin(), m.covariance.end(), out.pose.covariance);
+}
+template <>
+PoseWithCovarianceStampedMsg fromC(const geometry_msgs_msg_dds__PoseWithCovarianceStamped_& in) {
+  PoseWithCovarianceStampedMsg m;
+  m.header = fromC(in.header);
+  m.pose = fromC(in.pose.pose);
+  std::copy_n(in.pose.covariance, 36, m.covariance.begin());
+  return m;
+}
+
+// --- radarslam/MapInfo ------------------------------------------------------------------------
+template <>
+void toC(const MapInfoMsg& m, radarslam_msg_dds__MapInfo_& out,
+         std::vector<sensor_msgs_msg_dds__PointField_>&) {
+  toC(m.header, out.header);
+  out.map_name = view(m.map_name);
+  out.format_version = m.format_version;
+  out.keyframes = m.keyframes;
+  out.revision = m.revision;
+  out.grid_sha256 = view(m.grid_sha256);
+  out.manifest_sha256 = view(m.manifest_sha256);
+  toC(m.created, out.created);
+}
+template <>
+MapInfoMsg fromC(const radarslam_msg_dds__MapInfo_& in) {
+  MapInfoMsg m;
+  m.header = fromC(in.header);
+  m.map_name = copyStr(in.map_name);
+  m.format_version = in.format_version;
+  m.keyframes = in.keyframes;
+  m.revision = in.revision;
+  m.grid_sha256 = copyStr(in.grid_sha256);
+  m.manifest_sha256 = copyStr(in.manifest_sha256);
+  m.created = fromC(in.created);
+  return m;
+}
+
+// --- radarslam/RadarScan ----------------------------------------------------------------------
+template <>
+void toC(const RadarScanMsg& m, radarslam_msg_dds__RadarScan_& out,
+         std::vector<sensor_msgs_msg_dds__PointField_>&) {
+  toC(m.header, out.header);
+  out.num_azimuths = m.num_azimuths;
+  out.num_bins = m.num_bins;
+  out.range_resolution = m.range_resolution;
+  out.range_offset = m.range_offset;
+  viewSeq(out.azimuth_stamps_ns, m.azimuth_stamps_ns);
+  viewSeq(out.azimuth_angles, m.azimuth_angles);
+  viewSeq(out.azimuth_valid, m.azimuth_valid);
+  viewSeq(out.power, m.power);
+}
+template <>
+RadarScanMsg fromC(const radarslam_msg_dds__RadarScan_& in) {
+  RadarScanMsg m;
+  m.header = fromC(in.header);
+  m.num_azimuths = in.num_azimuths;
+  m.num_bins = in.num_bins;
+  m.range_resolution = in.range_resolution;
+  m.range_offset = in.range_offset;
+  m.azimuth_stamps_ns = copySeq<std::int64_t>(in.azimuth_stamps_ns);
+  m.azimuth_angles = copySeq<double>(in.azimuth_angles);
+  m.azimuth_valid = copySeq<std::uint8_t>(in.azimuth_valid);
+  m.power = copySeq<std::uint8_t>(in.power);
+  return m;
+}
+
+}  // namespace radarslam::dds::detail

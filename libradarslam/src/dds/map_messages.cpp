@@ -1,0 +1,205 @@
+#include "radarslam/dds/map_messages.h"
+
+#include <octomap/OcTree.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <unistd.h>
+#include <atomic>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "radarslam/core/atomic_file.h"
+#include "radarslam/core/errors.h"
+#include "radarslam/map/sha256.h"
+
+namespace radarslam::dds {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+HeaderMsg mapHeader(StampNs stamp) { return {toTimeMsg(stamp), kMapFrame}; }
+
+// A private scratch directory, removed on scope exit (for the OctoMap export's files).
+struct ScratchDir {
+  fs::path path;
+  ScratchDir() {
+    static std::atomic<int> counter{0};
+    path = fs::temp_directory_path() /
+           ("radarslam-dds-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+};
+
+}  // namespace
+
+OccupancyGridMsg gridMessage(const KeyframeMap& map, const GridExportParams& params, StampNs stamp) {
+  const OccupancyRaster r = buildOccupancy(map, params);
+  OccupancyGridMsg g;
+  g.header = mapHeader(stamp);
+  g.map_load_time = toTimeMsg(stamp);
+  g.resolution = static_cast<float>(r.resolution);
+  g.width = static_cast<std::uint32_t>(r.width);
+  g.height = static_cast<std::uint32_t>(r.height);
+  g.origin.x = r.x_min;
+  g.origin.y = r.y_min;
+  g.data.resize(r.p_occupied.size());
+  for (std::size_t i = 0; i < r.p_occupied.size(); ++i) {
+    const float p = r.p_occupied[i];
+    g.data[i] = p == 0.5f ? std::int8_t{-1} : static_cast<std::int8_t>(std::lround(100.0 * p));
+  }
+  return g;
+}
+
+PointCloud2Msg cloudMessage(const KeyframeMap& map, StampNs stamp) {
+  PointCloud2Msg m;
+  m.header = mapHeader(stamp);
+  m.fields = {{"x", 0}, {"y", 4}, {"z", 8}, {"intensity", 12}};
+  m.point_step = 16;
+  std::size_t n = 0;
+  for (const auto& kf : map.keyframes) n += kf.points.size();
+  m.data.resize(n * 16);
+  std::uint8_t* out = m.data.data();
+  for (const auto& kf : map.keyframes) {
+    const double c = std::cos(kf.pose.phi), s = std::sin(kf.pose.phi);
+    for (const auto& p : kf.points) {
+      // Same arithmetic as exportPointCloud (map/export_cloud.cpp), so both give identical floats.
+      const float v[4] = {static_cast<float>(kf.pose.x + c * p.x - s * p.y),
+                          static_cast<float>(kf.pose.y + s * p.x + c * p.y), 0.f, p.power};
+      std::memcpy(out, v, sizeof v);  // little-endian host
+      out += sizeof v;
+    }
+  }
+  m.width = static_cast<std::uint32_t>(n);
+  m.row_step = m.width * m.point_step;
+  return m;
+}
+
+OctomapMsg octomapMessage(const KeyframeMap& map, const OctomapExportParams& params, StampNs stamp) {
+  ScratchDir scratch;
+  exportOctomap(map, scratch.path, "map", params);
+  octomap::OcTree tree(params.resolution_m);
+  const fs::path bt = scratch.path / "map.bt";
+  if (!tree.readBinary(bt.string())) throw InputError(bt.string(), "cannot read back the exported OctoMap");
+  std::ostringstream os(std::ios::binary);
+  tree.writeBinaryData(os);
+  const std::string bytes = os.str();
+  OctomapMsg m;
+  m.header = mapHeader(stamp);
+  m.binary = true;
+  m.id = "OcTree";
+  m.resolution = tree.getResolution();
+  m.data.assign(reinterpret_cast<const std::int8_t*>(bytes.data()),
+                reinterpret_cast<const std::int8_t*>(bytes.data()) + bytes.size());
+  return m;
+}
+
+std::string gridSha256(const OccupancyGridMsg& grid) {
+  return sha256Hex({reinterpret_cast<const unsigned char*>(grid.data.data()), grid.data.size()});
+}
+
+std::vector<fs::path> writeGridFiles(const OccupancyGridMsg& grid, const fs::path& dir,
+                                     const std::string& stem) {
+  if (static_cast<std::uint64_t>(grid.width) * grid.height != grid.data.size() || grid.width == 0 ||
+      grid.height == 0 || !(grid.resolution > 0.f))
+    throw InputError("OccupancyGrid message", "inconsistent size " + std::to_string(grid.width) + "x" +
+                                                  std::to_string(grid.height) + " with " +
+                                                  std::to_string(grid.data.size()) + " cells");
+  const int w = static_cast<int>(grid.width), h = static_cast<int>(grid.height);
+  cv::Mat img(h, w, CV_8UC1);
+  // Image row 0 = top = highest y (ROS map_server), pixel = 255 * P(free), 205 = unknown.
+  for (int row = 0; row < h; ++row) {
+    const std::int8_t* src = grid.data.data() + static_cast<std::size_t>(h - 1 - row) * w;
+    auto* dst = img.ptr<unsigned char>(row);
+    for (int col = 0; col < w; ++col) {
+      const int v = src[col];
+      dst[col] = v < 0 || v > 100 ? 205 : static_cast<unsigned char>(std::lround(255.0 * (100 - v) / 100.0));
+    }
+  }
+  std::vector<fs::path> files;
+  for (const char* ext : {".pgm", ".png"}) {
+    const fs::path path = dir / (stem + ext);
+    std::vector<unsigned char> buf;
+    if (!cv::imencode(ext, img, buf)) throw InputError(path.string(), "cannot encode the grid image");
+    writeBytesAtomically(path, buf);
+    files.push_back(path);
+  }
+  // Rotation of the origin: yaw of the quaternion (our grids are axis-aligned: 0).
+  const double yaw =
+      std::atan2(2.0 * (grid.origin.qw * grid.origin.qz + grid.origin.qx * grid.origin.qy),
+                 1.0 - 2.0 * (grid.origin.qy * grid.origin.qy + grid.origin.qz * grid.origin.qz));
+  char res[32];
+  const auto [end, ec] = std::to_chars(res, res + sizeof res - 1, grid.resolution);  // shortest round trip
+  *end = '\0';
+  (void)ec;
+  char yaml[512];
+  std::snprintf(yaml, sizeof yaml,
+                "image: %s.pgm\nmode: scale\nresolution: %s\norigin: [%.9g, %.9g, %.9g]\nnegate: 0\n"
+                "occupied_thresh: 0.65\nfree_thresh: 0.196\n",
+                stem.c_str(), res, grid.origin.x, grid.origin.y, yaw);
+  const fs::path yaml_path = dir / (stem + ".yaml");
+  writeTextAtomically(yaml_path, yaml);
+  files.push_back(yaml_path);
+  return files;
+}
+
+void writePcdFile(const PointCloud2Msg& cloud, const fs::path& path) {
+  const std::uint64_t n = static_cast<std::uint64_t>(cloud.width) * cloud.height;
+  if (cloud.is_bigendian || cloud.fields.empty() || cloud.point_step == 0 ||
+      n * cloud.point_step != cloud.data.size())
+    throw InputError(path.string(), "inconsistent PointCloud2 message (size/point_step/endianness)");
+  std::string names, sizes, types, counts;
+  for (const auto& f : cloud.fields) {
+    if (f.datatype != PointFieldMsg::kFloat32 || f.count != 1 || f.offset + 4 > cloud.point_step)
+      throw InputError(path.string(), "PointCloud2 field '" + f.name + "' is not a single FLOAT32");
+    names.append(" ").append(f.name);
+    sizes.append(" 4");
+    types.append(" F");
+    counts.append(" 1");
+  }
+  std::string out = "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS";
+  out.append(names).append("\nSIZE").append(sizes).append("\nTYPE").append(types).append("\nCOUNT").append(
+      counts);
+  out.append("\nWIDTH ")
+      .append(std::to_string(cloud.width))
+      .append("\nHEIGHT ")
+      .append(std::to_string(cloud.height));
+  out.append("\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS ").append(std::to_string(n)).append("\nDATA binary\n");
+  const std::size_t header = out.size();
+  out.resize(header + n * cloud.fields.size() * 4);
+  char* dst = out.data() + header;
+  for (std::uint64_t i = 0; i < n; ++i)
+    for (const auto& f : cloud.fields) {
+      std::memcpy(dst, cloud.data.data() + i * cloud.point_step + f.offset, 4);
+      dst += 4;
+    }
+  writeTextAtomically(path, out);
+}
+
+void writeOctomapFile(const OctomapMsg& octomap, const fs::path& path) {
+  if (!octomap.binary || octomap.id != "OcTree" || !(octomap.resolution > 0))
+    throw InputError(path.string(), "Octomap message is not a binary OcTree (id '" + octomap.id + "')");
+  octomap::OcTree tree(octomap.resolution);
+  std::istringstream in(std::string(reinterpret_cast<const char*>(octomap.data.data()), octomap.data.size()),
+                        std::ios::binary);
+  if (!tree.readBinaryData(in)) throw InputError(path.string(), "Octomap message data does not parse");
+  writeFileAtomically(path, [&](const fs::path& tmp) {
+    std::ofstream os(tmp, std::ios::binary);
+    if (!tree.writeBinaryConst(os) || !os.flush())
+      throw InputError(path.string(), "cannot write the OctoMap");
+  });
+}
+
+}  // namespace radarslam::dds
