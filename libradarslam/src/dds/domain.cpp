@@ -57,6 +57,10 @@ DomainRegistry& registry() {
   return r;
 }
 
+void captureLog(void* out, const dds_log_data_t* data) {
+  static_cast<std::string*>(out)->append(data->message, data->size);
+}
+
 void releaseDomain(std::uint32_t id) {
   auto& reg = registry();
   std::lock_guard lock(reg.mutex);
@@ -102,8 +106,18 @@ Domain::Domain(std::uint32_t domain_id, const std::string& config_xml) : id_(dom
     std::lock_guard lock(reg.mutex);
     auto it = reg.domains.find(domain_id);
     if (it == reg.domains.end()) {
+      // Cyclone reports configuration problems through its log (stderr by default): capture them
+      // so the error is one line naming the problem.
+      std::string log;
+      dds_set_log_sink(&captureLog, &log);
       const dds_entity_t d = dds_create_domain(domain_id, config_xml.c_str());
-      if (d < 0) throw InputError(where, "cannot create it from the configuration (" + ddsError(d) + ")");
+      dds_set_log_sink(nullptr, nullptr);
+      if (d < 0) {
+        std::string reason = log.substr(0, log.find('\n'));
+        if (reason.rfind("config: ", 0) == 0) reason.erase(0, 8);
+        if (reason.empty()) reason = ddsError(d);
+        throw InputError(where, "cannot create it from the configuration: " + reason);
+      }
       it = reg.domains.emplace(domain_id, std::make_pair(d, 0)).first;
     }
     ++it->second.second;

@@ -1,0 +1,141 @@
+#pragma once
+// Helpers for the DDS tests: child processes with captured output, per-test DDS domain ids,
+// synthetic maps built with addKeyframe.
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <radarslam/map/keyframe_map.h>
+#include <radarslam/map/map_from_trajectory.h>
+
+extern char** environ;
+
+namespace radarslam::test {
+
+/// A DDS domain id unique to this test (index 0..9, distinct per test) and this process: parallel
+/// ctest runs of different tests never share an id; the pid spreads runs of the suite.
+inline unsigned testDomainId(unsigned index) {
+  return 1 + (static_cast<unsigned>(::getpid()) % 23) * 10 + index;
+}
+
+inline std::string readText(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+/// A child process with stdout/stderr captured to files; killed (SIGKILL) if still running at
+/// destruction.
+class Child {
+ public:
+  Child(const std::vector<std::string>& args, const std::filesystem::path& log_stem) {
+    out_ = log_stem.string() + ".out";
+    err_ = log_stem.string() + ".err";
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&fa, 2, err_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    std::vector<char*> argv;
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    const int rc = posix_spawn(&pid_, argv[0], &fa, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&fa);
+    if (rc != 0) throw std::runtime_error("cannot start " + args[0]);
+  }
+  ~Child() {
+    if (running()) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+  }
+  Child(const Child&) = delete;
+  Child& operator=(const Child&) = delete;
+
+  pid_t pid() const { return pid_; }
+  bool running() {
+    if (exited_) return false;
+    int status = 0;
+    if (::waitpid(pid_, &status, WNOHANG) == pid_) finish(status);
+    return !exited_;
+  }
+  /// Waits for the exit; returns the exit code (128 + signal if killed), or -1 on timeout.
+  int wait(double timeout_s) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    while (running()) {
+      if (std::chrono::steady_clock::now() > deadline) return -1;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return code_;
+  }
+  void signal(int sig) { ::kill(pid_, sig); }
+  std::string out() const { return readText(out_); }
+  std::string err() const { return readText(err_); }
+  /// Waits until stderr contains `text` n times (e.g. a status line); false on timeout or exit.
+  bool waitForLog(const std::string& text, double timeout_s, int n = 1) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    for (;;) {
+      const std::string e = err();
+      int found = 0;
+      for (std::size_t pos = e.find(text); pos != std::string::npos; pos = e.find(text, pos + 1)) ++found;
+      if (found >= n) return true;
+      if (!running() || std::chrono::steady_clock::now() > deadline) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  }
+
+ private:
+  void finish(int status) {
+    exited_ = true;
+    code_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+  pid_t pid_ = -1;
+  bool exited_ = false;
+  int code_ = -1;
+  std::string out_, err_;
+};
+
+/// A map of `keyframes` keyframes on a line, each seeing `points` random returns spread over the
+/// square [-half, half]^2 (world frame) plus the four corners, so the grid spans the square plus
+/// the export margin.
+inline KeyframeMap syntheticMap(int keyframes, int points, double half, unsigned seed) {
+  KeyframeMap map;
+  map.meta.sensor.num_azimuths = 400;
+  map.meta.parameters_yaml = "synthetic: true\n";
+  map.meta.source_dataset = "synthetic";
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-half, half), pw(40.0, 255.0);
+  for (int k = 0; k < keyframes; ++k) {
+    const mrpt::math::TPose2D pose(-half / 2 + half * k / std::max(1, keyframes - 1), 0.1 * k, 0.05 * k);
+    const double c = std::cos(pose.phi), s = std::sin(pose.phi);
+    std::vector<RadarPoint> cloud;
+    auto add = [&](double wx, double wy) {
+      const double dx = wx - pose.x, dy = wy - pose.y;
+      RadarPoint p;
+      p.x = static_cast<float>(c * dx + s * dy);
+      p.y = static_cast<float>(-s * dx + c * dy);
+      p.range_m = std::hypot(p.x, p.y);
+      p.power = static_cast<float>(pw(rng));
+      cloud.push_back(p);
+    };
+    for (int i = 0; i < points; ++i) add(u(rng), u(rng));
+    for (double cx : {-half, half})
+      for (double cy : {-half, half}) add(cx, cy);
+    addKeyframe(map, 1'700'000'000'000'000'000LL + k * 250'000'000LL, pose, cloud);
+  }
+  return map;
+}
+
+}  // namespace radarslam::test
