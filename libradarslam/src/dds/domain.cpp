@@ -14,7 +14,8 @@ namespace radarslam::dds {
 const char* const kLoopbackConfigXml =
     "<CycloneDDS><Domain Id=\"any\"><General><Interfaces>"
     "<NetworkInterface name=\"lo\" multicast=\"false\"/></Interfaces>"
-    "<AllowMulticast>false</AllowMulticast></General><Discovery>"
+    "<AllowMulticast>false</AllowMulticast>"
+    "<MaxMessageSize>65000B</MaxMessageSize><FragmentSize>60000B</FragmentSize></General><Discovery>"
     "<ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>30</MaxAutoParticipantIndex>"
     "<Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery></Domain></CycloneDDS>";
 

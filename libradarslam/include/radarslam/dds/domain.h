@@ -13,7 +13,8 @@
 namespace radarslam::dds {
 
 /// Loopback-only configuration (the content of config/dds.xml): no multicast, unicast discovery
-/// to 127.0.0.1, so nothing leaves the host unless a configuration says otherwise.
+/// to 127.0.0.1, so nothing leaves the host unless a configuration says otherwise; 60 kB fragments
+/// (lo has a 64 kB MTU; a 16 MB grid reaches a late joiner ~2.5x sooner than with the defaults).
 extern const char* const kLoopbackConfigXml;
 
 /// Reads an XML configuration file; throws InputError(path, ...) if it cannot be read or does not
