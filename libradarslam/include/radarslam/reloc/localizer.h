@@ -1,0 +1,81 @@
+#pragma once
+// Relocalisation in a stored map (issue #6): feed radar scans in time order, get for each one
+// whether it is localised in the map and where.
+//
+//   scan -> RadarOdometry (frontend/odometry.h: T_prev_cur, body velocity) -> Algorithm-1 peak
+//   cloud, motion compensated with the odometry velocity ->
+//     not localised: GlobalLocalizer (M2DP retrieval over all keyframes + verification), the fix
+//                    confirmed by a MapTracker registration from it -> GlobalFix
+//     localised:     MapTracker registration from last pose (+) T_prev_cur -> Tracking
+//   A rejected registration reports the scan as not localised (Lost) and keeps dead reckoning with
+//   odometry for up to max_missed_scans scans, still trying to register from the prediction; after
+//   that global localisation runs again. A pose is only reported when a test accepted it.
+#include <mrpt/math/TPose2D.h>
+#include <Eigen/Core>
+
+#include <memory>
+
+#include "radarslam/core/time.h"
+#include "radarslam/frontend/odometry_params.h"
+#include "radarslam/obs/CObservationRadarScan.h"
+#include "radarslam/radar/peak_cloud.h"
+#include "radarslam/reloc/global_localizer.h"
+#include "radarslam/reloc/map_tracker.h"
+
+namespace radarslam {
+
+class YamlParams;
+
+struct LocalizerParams {
+  PeakCloudParams peaks;
+  bool motion_compensation = true;  ///< compensate the scan's peak cloud with the odometry velocity
+  GlobalLocalizerParams global;
+  MapTrackerParams tracker;
+  int max_missed_scans = 3;       ///< rejected registrations in a row before global search again
+  int global_retry_interval = 1;  ///< while lost, try global localisation every N scans
+};
+
+/// Overrides from the `localization:` section of `yaml`: motion_compensation, max_missed_scans,
+/// global_retry_interval and the sections peak_cloud:, global:, tracker:.
+void loadParams(const YamlParams& yaml, LocalizerParams& params);
+
+enum class LocalizationStatus { GlobalFix, Tracking, Lost };
+const char* toString(LocalizationStatus s);
+
+/// Wall time of each stage, milliseconds. The peak cloud (`cloud`) is extracted on a second thread
+/// while the odometry runs, so total() can exceed the scan's wall time.
+struct LocalizationTiming {
+  double odometry = 0, cloud = 0, tracking = 0, global = 0;
+  double total() const { return odometry + cloud + tracking + global; }
+};
+
+struct LocalizationResult {
+  StampNs stamp = 0;
+  bool localised = false;
+  mrpt::math::TPose2D pose;                              ///< sensor pose in the map frame (if localised)
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< of (x, y, phi) (if localised)
+  double fit_score = 0;                                  ///< inlier ratio of the registration
+  std::size_t inliers = 0;
+  LocalizationStatus status = LocalizationStatus::Lost;
+  LocalizationTiming timing;
+};
+
+class Localizer {
+ public:
+  /// Keeps a reference to `map` (must outlive this).
+  Localizer(const KeyframeMap& map, const OdometryParams& odometry, const LocalizerParams& params = {});
+  ~Localizer();
+  Localizer(const Localizer&) = delete;
+  Localizer& operator=(const Localizer&) = delete;
+
+  LocalizationResult process(const CObservationRadarScan& scan);
+
+  /// Global fixes so far (the first one included).
+  std::size_t globalFixes() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace radarslam

@@ -1,0 +1,92 @@
+#pragma once
+// Scan-to-map registration for map-based localisation: a local submap (the peak clouds of the map
+// keyframes near a predicted pose, in the map frame, thinned on a voxel grid, in a kd-tree) and a
+// robust ICP of a scan's peak cloud against it.
+//
+// ICP (Gauss-Newton on SE(2), Cauchy-weighted): each scan point is matched to its nearest submap
+// point within a gate that shrinks from max_correspondence_m to inlier_distance_m over the
+// iterations. Where the submap is locally linear (a wall: PCA of the neighbours within
+// normal_radius_m, smallest/largest eigenvalue <= max_planarity) the residual is point-to-line
+// (along the wall's normal), elsewhere point-to-point.
+// Covariance = sigma^2 H^-1 (pseudo-inverse with eigenvalues clamped at 1e-6; H = Gauss-Newton Hessian J^T W
+// J of the final inliers, sigma^2 = their weighted residual variance, at least min_sigma_m^2) times
+// covariance_scale (> 1 because neighbouring radar points are not independent measurements).
+#include <mrpt/math/TPose2D.h>
+#include <Eigen/Core>
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "radarslam/map/keyframe_map.h"
+#include "radarslam/radar/peak_cloud.h"
+
+namespace radarslam {
+
+class YamlParams;
+
+struct SubmapParams {
+  double radius_m = 60;            ///< keyframes within this distance of the centre
+  double voxel_m = 0.5;            ///< submap thinning (centroid per voxel)
+  double max_point_range_m = 0;    ///< keyframe points farther from their sensor are dropped (0 = all)
+  double rebuild_distance_m = 15;  ///< a tracker rebuilds when the prediction moves this far
+};
+
+struct IcpParams {
+  int max_iterations = 30;
+  double max_correspondence_m = 3.0;  ///< gate of the first iteration
+  double inlier_distance_m = 1.0;     ///< gate of the last iterations and inlier definition
+  double cauchy_m = 0.5;              ///< robust kernel scale
+  double normal_radius_m = 1.5;       ///< neighbourhood for the local line fit
+  double max_planarity = 0.1;         ///< eigenvalue ratio below which a point is on a line
+  double convergence_m = 1e-3, convergence_rad = 1e-4;
+  double scan_voxel_m = 1.0;           ///< query cloud thinning (strongest point per voxel)
+  std::size_t max_scan_points = 1000;  ///< after thinning (even stride)
+  double min_sigma_m = 0.05;
+  double covariance_scale = 10.0;
+};
+
+void loadParams(const YamlParams& yaml, SubmapParams& params);
+void loadParams(const YamlParams& yaml, IcpParams& params);
+
+struct IcpResult {
+  mrpt::math::TPose2D pose;                                  ///< scan sensor pose in the map frame
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  ///< of (x, y, phi)
+  double fit_score = 0;                                      ///< inliers / scan points used
+  std::size_t inliers = 0;
+  std::size_t scan_points = 0;
+  double rms_m = 0;  ///< inlier residual RMS
+  int iterations = 0;
+  bool converged = false;
+};
+
+/// The thinned map-frame points of the keyframes near a centre, with a kd-tree.
+class LocalSubmap {
+ public:
+  LocalSubmap();
+  ~LocalSubmap();
+  LocalSubmap(LocalSubmap&&) noexcept;
+  LocalSubmap& operator=(LocalSubmap&&) noexcept;
+
+  /// Keyframes of `map` within params.radius_m of (cx, cy).
+  static LocalSubmap build(const KeyframeMap& map, double cx, double cy, const SubmapParams& params);
+  /// Every keyframe's points (tests, small maps).
+  static LocalSubmap fromPoints(std::vector<Eigen::Vector2d> map_points, double voxel_m);
+
+  std::size_t size() const;
+  std::size_t keyframes() const { return keyframes_; }
+  double centreX() const { return cx_; }
+  double centreY() const { return cy_; }
+
+  /// Registers `scan` (sensor frame) starting from `initial` (sensor pose in the map frame).
+  IcpResult registerScan(std::span<const RadarPoint> scan, const mrpt::math::TPose2D& initial,
+                         const IcpParams& params) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::size_t keyframes_ = 0;
+  double cx_ = 0, cy_ = 0;
+};
+
+}  // namespace radarslam

@@ -1,0 +1,287 @@
+// Local submap and robust point-to-line/point-to-point ICP; see reloc/submap_icp.h.
+#include "radarslam/reloc/submap_icp.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <nanoflann.hpp>
+#include <unordered_map>
+
+#include "radarslam/core/errors.h"
+#include "radarslam/core/yaml_params.h"
+
+namespace radarslam {
+
+void loadParams(const YamlParams& yaml, SubmapParams& p) {
+  yaml.get("radius_m", p.radius_m);
+  yaml.get("voxel_m", p.voxel_m);
+  yaml.get("max_point_range_m", p.max_point_range_m);
+  yaml.get("rebuild_distance_m", p.rebuild_distance_m);
+  if (!(p.radius_m > 0) || !(p.voxel_m > 0) || !(p.max_point_range_m >= 0) || !(p.rebuild_distance_m >= 0))
+    throw InputError(yaml.origin(), "localization submap: radius_m and voxel_m must be > 0, the others >= 0");
+}
+
+void loadParams(const YamlParams& yaml, IcpParams& p) {
+  yaml.get("max_iterations", p.max_iterations);
+  yaml.get("max_correspondence_m", p.max_correspondence_m);
+  yaml.get("inlier_distance_m", p.inlier_distance_m);
+  yaml.get("cauchy_m", p.cauchy_m);
+  yaml.get("normal_radius_m", p.normal_radius_m);
+  yaml.get("max_planarity", p.max_planarity);
+  yaml.get("convergence_m", p.convergence_m);
+  yaml.get("convergence_rad", p.convergence_rad);
+  yaml.get("scan_voxel_m", p.scan_voxel_m);
+  int max_points = static_cast<int>(p.max_scan_points);
+  yaml.get("max_scan_points", max_points);
+  yaml.get("min_sigma_m", p.min_sigma_m);
+  yaml.get("covariance_scale", p.covariance_scale);
+  if (p.max_iterations < 1 || !(p.inlier_distance_m > 0) ||
+      !(p.max_correspondence_m >= p.inlier_distance_m) || !(p.cauchy_m > 0) || !(p.normal_radius_m > 0) ||
+      max_points < 10 || !(p.scan_voxel_m >= 0) || !(p.covariance_scale > 0))
+    throw InputError(yaml.origin(),
+                     "localization icp: max_iterations >= 1, 0 < inlier_distance_m <= max_correspondence_m, "
+                     "positive cauchy_m, normal_radius_m, covariance_scale, max_scan_points >= 10");
+  p.max_scan_points = static_cast<std::size_t>(max_points);
+}
+
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+
+struct Cloud2D {
+  std::vector<Vec2> pts;
+  std::size_t kdtree_get_point_count() const { return pts.size(); }
+  double kdtree_get_pt(std::size_t i, std::size_t d) const { return pts[i][static_cast<int>(d)]; }
+  template <class BBOX>
+  bool kdtree_get_bbox(BBOX&) const {
+    return false;
+  }
+};
+using Tree2D = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud2D>, Cloud2D, 2,
+                                                   std::uint32_t>;
+
+std::int64_t voxelKey(double x, double y, double voxel) {
+  const auto ix = static_cast<std::int64_t>(std::floor(x / voxel));
+  const auto iy = static_cast<std::int64_t>(std::floor(y / voxel));
+  return (ix << 32) ^ (iy & 0xffffffffLL);
+}
+
+/// One point per voxel: the centroid of the points in it.
+std::vector<Vec2> voxelCentroids(const std::vector<Vec2>& pts, double voxel) {
+  std::unordered_map<std::int64_t, std::size_t> index;
+  index.reserve(pts.size());
+  std::vector<Vec2> sum;
+  std::vector<int> count;
+  for (const auto& p : pts) {
+    const auto [it, inserted] = index.emplace(voxelKey(p.x(), p.y(), voxel), sum.size());
+    if (inserted) {
+      sum.push_back(p);
+      count.push_back(1);
+    } else {
+      sum[it->second] += p;
+      ++count[it->second];
+    }
+  }
+  for (std::size_t i = 0; i < sum.size(); ++i) sum[i] /= count[i];
+  return sum;
+}
+
+/// The strongest point per voxel (sensor frame), then an even stride down to max_points.
+std::vector<Vec2> thinScan(std::span<const RadarPoint> c, double voxel, std::size_t max_points) {
+  std::vector<Vec2> out;
+  if (voxel > 0) {
+    std::unordered_map<std::int64_t, std::size_t> best;
+    best.reserve(c.size());
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const auto [it, inserted] = best.emplace(voxelKey(c[i].x, c[i].y, voxel), i);
+      if (inserted)
+        order.push_back(i);
+      else if (c[i].power > c[it->second].power)
+        it->second = i;
+    }
+    // Deterministic order: by first appearance of the voxel.
+    for (const std::size_t first : order) {
+      const std::size_t i = best.at(voxelKey(c[first].x, c[first].y, voxel));
+      out.emplace_back(c[i].x, c[i].y);
+    }
+  } else {
+    for (const auto& p : c) out.emplace_back(p.x, p.y);
+  }
+  if (out.size() > max_points) {
+    std::vector<Vec2> s;
+    s.reserve(max_points);
+    for (std::size_t k = 0; k < max_points; ++k) s.push_back(out[k * out.size() / max_points]);
+    out.swap(s);
+  }
+  return out;
+}
+
+}  // namespace
+
+struct LocalSubmap::Impl {
+  Cloud2D cloud;
+  Tree2D tree;
+  // Lazily computed line normals: 0 = not computed, 1 = line (normal valid), 2 = not a line.
+  mutable std::vector<std::uint8_t> normal_state;
+  mutable std::vector<Vec2> normal;
+  explicit Impl(std::vector<Vec2> p)
+      : cloud{std::move(p)}, tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
+    tree.buildIndex();
+    normal_state.assign(cloud.pts.size(), 0);
+    normal.resize(cloud.pts.size());
+  }
+
+  /// The line normal at submap point i, or nullptr if its neighbourhood is not linear.
+  const Vec2* lineNormal(std::uint32_t i, const IcpParams& params) const {
+    if (normal_state[i] == 0) {
+      std::vector<std::pair<std::uint32_t, double>> nb;
+      const double r2 = params.normal_radius_m * params.normal_radius_m;
+      tree.radiusSearch(cloud.pts[i].data(), r2, nb, nanoflann::SearchParams(32, 0, false));
+      normal_state[i] = 2;
+      if (nb.size() >= 4) {
+        Vec2 mean = Vec2::Zero();
+        for (const auto& [j, d] : nb) mean += cloud.pts[j];
+        mean /= static_cast<double>(nb.size());
+        Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+        for (const auto& [j, d] : nb) {
+          const Vec2 e = cloud.pts[j] - mean;
+          cov += e * e.transpose();
+        }
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
+        const double l0 = es.eigenvalues()(0), l1 = es.eigenvalues()(1);
+        if (l1 > 0 && l0 <= params.max_planarity * l1) {
+          normal[i] = es.eigenvectors().col(0).normalized();
+          normal_state[i] = 1;
+        }
+      }
+    }
+    return normal_state[i] == 1 ? &normal[i] : nullptr;
+  }
+};
+
+LocalSubmap::LocalSubmap() = default;
+LocalSubmap::~LocalSubmap() = default;
+LocalSubmap::LocalSubmap(LocalSubmap&&) noexcept = default;
+LocalSubmap& LocalSubmap::operator=(LocalSubmap&&) noexcept = default;
+
+std::size_t LocalSubmap::size() const { return impl_ ? impl_->cloud.pts.size() : 0; }
+
+LocalSubmap LocalSubmap::build(const KeyframeMap& map, double cx, double cy, const SubmapParams& params) {
+  std::vector<Vec2> pts;
+  std::size_t used = 0;
+  const double r2 = params.radius_m * params.radius_m;
+  const double range2 = params.max_point_range_m * params.max_point_range_m;
+  for (const auto& kf : map.keyframes) {
+    const double dx = kf.pose.x - cx, dy = kf.pose.y - cy;
+    if (dx * dx + dy * dy > r2) continue;
+    ++used;
+    const double c = std::cos(kf.pose.phi), s = std::sin(kf.pose.phi);
+    for (const auto& p : kf.points) {
+      if (range2 > 0 && double(p.x) * p.x + double(p.y) * p.y > range2) continue;
+      pts.emplace_back(kf.pose.x + c * p.x - s * p.y, kf.pose.y + s * p.x + c * p.y);
+    }
+  }
+  LocalSubmap m = fromPoints(std::move(pts), params.voxel_m);
+  m.keyframes_ = used;
+  m.cx_ = cx;
+  m.cy_ = cy;
+  return m;
+}
+
+LocalSubmap LocalSubmap::fromPoints(std::vector<Eigen::Vector2d> map_points, double voxel_m) {
+  LocalSubmap m;
+  m.impl_ = std::make_unique<Impl>(voxel_m > 0 ? voxelCentroids(map_points, voxel_m) : std::move(map_points));
+  return m;
+}
+
+IcpResult LocalSubmap::registerScan(std::span<const RadarPoint> scan, const mrpt::math::TPose2D& initial,
+                                    const IcpParams& params) const {
+  IcpResult res;
+  res.pose = initial;
+  const std::vector<Vec2> src = thinScan(scan, params.scan_voxel_m, params.max_scan_points);
+  res.scan_points = src.size();
+  if (!impl_ || impl_->cloud.pts.size() < 3 || src.size() < 3) return res;
+
+  double x = initial.x, y = initial.y, th = initial.phi;
+  Eigen::Matrix3d H;
+  double sum_wr2 = 0;
+  std::size_t dims = 0, inliers = 0;
+  double sum_in_d2 = 0;
+  const double c2 = params.cauchy_m * params.cauchy_m;
+  bool final_pass = false;
+  for (int it = 0;; ++it) {
+    const double gate =
+        final_pass ? params.inlier_distance_m
+                   : std::max(params.inlier_distance_m, params.max_correspondence_m * std::pow(0.7, it));
+    const double gate2 = gate * gate;
+    const double c = std::cos(th), s = std::sin(th);
+    H.setZero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    sum_wr2 = 0;
+    dims = 0;
+    inliers = 0;
+    sum_in_d2 = 0;
+    for (const Vec2& p : src) {
+      const Vec2 rp(c * p.x() - s * p.y(), s * p.x() + c * p.y());
+      const Vec2 q(rp.x() + x, rp.y() + y);
+      std::uint32_t idx = 0;
+      double d2 = 0;
+      impl_->tree.knnSearch(q.data(), 1, &idx, &d2);
+      if (d2 > gate2) continue;
+      ++inliers;
+      sum_in_d2 += d2;
+      const Vec2 e = q - impl_->cloud.pts[idx];
+      const Vec2 dth(-rp.y(), rp.x());
+      if (const Vec2* n = impl_->lineNormal(idx, params)) {
+        const double r = n->dot(e);
+        const double w = 1.0 / (1.0 + r * r / c2);
+        const Eigen::Vector3d J(n->x(), n->y(), n->dot(dth));
+        H += w * J * J.transpose();
+        g += w * J * r;
+        sum_wr2 += w * r * r;
+        dims += 1;
+      } else {
+        const double w = 1.0 / (1.0 + d2 / c2);
+        Eigen::Matrix<double, 2, 3> J;
+        J << 1, 0, dth.x(), 0, 1, dth.y();
+        H += w * J.transpose() * J;
+        g += w * J.transpose() * e;
+        sum_wr2 += w * d2;
+        dims += 2;
+      }
+    }
+    if (final_pass || inliers < 3) break;
+    const Eigen::Vector3d delta = H.ldlt().solve(-g);
+    if (!delta.allFinite()) break;
+    x += delta(0), y += delta(1), th += delta(2);
+    res.iterations = it + 1;
+    const bool small =
+        std::hypot(delta(0), delta(1)) < params.convergence_m && std::abs(delta(2)) < params.convergence_rad;
+    if ((small && gate <= params.inlier_distance_m) || it + 1 >= params.max_iterations) {
+      res.converged = small;
+      final_pass = true;  // one more pass: inliers, Hessian and residuals at the solution
+    }
+  }
+  res.pose = {x, y, std::remainder(th, 2 * M_PI)};
+  res.inliers = inliers;
+  res.fit_score = static_cast<double>(inliers) / static_cast<double>(src.size());
+  res.rms_m = inliers > 0 ? std::sqrt(sum_in_d2 / static_cast<double>(inliers)) : 0;
+  const double sigma2 = std::max(params.min_sigma_m * params.min_sigma_m,
+                                 dims > 3 ? sum_wr2 / static_cast<double>(dims - 3) : 0.0);
+  // sigma^2 H^-1 through the eigen decomposition: a direction the geometry does not constrain (a
+  // corridor along its walls) gets a huge variance instead of making the inverse fail.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(0.5 * (H + H.transpose()));
+  if (inliers >= 3 && es.info() == Eigen::Success) {
+    const Eigen::Vector3d inv_l = es.eigenvalues().cwiseMax(1e-6).cwiseInverse();
+    res.covariance = params.covariance_scale * sigma2 * es.eigenvectors() * inv_l.asDiagonal() *
+                     es.eigenvectors().transpose();
+    res.covariance = 0.5 * (res.covariance + res.covariance.transpose()).eval();
+  } else {
+    res.covariance = Eigen::Matrix3d::Identity() * 1e6;
+  }
+  return res;
+}
+
+}  // namespace radarslam

@@ -1,0 +1,104 @@
+// Integration: a small simulated world, a map from the first traversal (map-synth, ground truth),
+// `radarslam localize` on the second traversal (other lane, other parked cars and traffic).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "temp_dir.h"
+
+namespace radarslam {
+namespace {
+
+int run(const std::string& args, const std::filesystem::path& log) {
+  const std::string cmd = std::string(RADARSLAM_CLI) + " " + args + " > '" + log.string() + "' 2>&1";
+  return std::system(cmd.c_str());
+}
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+/// Data rows (not starting with '#') of a whitespace-separated file.
+std::vector<std::vector<std::string>> rows(const std::filesystem::path& p) {
+  std::vector<std::vector<std::string>> out;
+  std::ifstream f(p);
+  for (std::string line; std::getline(f, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ss(line);
+    std::vector<std::string> cols;
+    for (std::string c; ss >> c;) cols.push_back(c);
+    out.push_back(cols);
+  }
+  return out;
+}
+
+TEST(LocalizeCli, SecondTraversalOfSimulatedWorld) {
+  test::TempDir tmp;
+  const auto d = tmp.path();
+  const std::string scans = " --scans 120";
+  ASSERT_EQ(run("simulate '" + (d / "t1").string() + "'" + scans, d / "sim1.log"), 0)
+      << slurp(d / "sim1.log");
+  ASSERT_EQ(run("simulate '" + (d / "t2").string() + "'" + scans + " --traversal 2", d / "sim2.log"), 0)
+      << slurp(d / "sim2.log");
+  ASSERT_EQ(run("map-synth '" + (d / "t1").string() + "' -o '" + (d / "map").string() + "'", d / "synth.log"),
+            0)
+      << slurp(d / "synth.log");
+  const auto poses = d / "poses.tum";
+  ASSERT_EQ(run("localize '" + (d / "map").string() + "' '" + (d / "t2").string() + "' -o '" +
+                    poses.string() + "' --eval-dir '" + (d / "eval").string() + "' -q",
+                d / "loc.log"),
+            0)
+      << slurp(d / "loc.log");
+  const std::string log = slurp(d / "loc.log");
+
+  // Per-scan side file: one row per scan, status and localised flag consistent.
+  const auto side = rows(poses.string() + ".csv");
+  ASSERT_EQ(side.size(), 120u) << log;
+  std::size_t localised = 0;
+  for (const auto& r : side) {
+    ASSERT_EQ(r.size(), 16u);
+    localised += r[3] == "1";
+    EXPECT_EQ(r[3] == "1", r[2] != "lost");
+  }
+  EXPECT_GE(localised, 108u) << log;  // >= 90 %
+  EXPECT_EQ(rows(poses).size(), localised);
+  // The first fix comes within the first 3 scans.
+  EXPECT_TRUE(side[0][3] == "1" || side[1][3] == "1" || side[2][3] == "1") << log;
+
+  // Errors against the absolute simulator truth.
+  const auto errors = rows(d / "eval" / "errors.csv");
+  ASSERT_EQ(errors.size(), localised) << log;
+  std::vector<double> pos, head;
+  for (const auto& r : errors) {
+    pos.push_back(std::stod(r[3]));
+    head.push_back(std::stod(r[4]));
+  }
+  std::sort(pos.begin(), pos.end());
+  std::sort(head.begin(), head.end());
+  EXPECT_LT(pos[pos.size() / 2], 0.5) << log;
+  EXPECT_LT(head[head.size() / 2], 1.0) << log;
+  EXPECT_LT(pos.back(), 5.0) << log;  // nothing reported as localised is far off
+  EXPECT_NE(log.find("absolute gt/poses.tum"), std::string::npos) << log;
+}
+
+TEST(LocalizeCli, MissingMapIsOneLineError) {
+  test::TempDir tmp;
+  const auto d = tmp.path();
+  EXPECT_NE(run("localize '" + (d / "nomap").string() + "' '" + d.string() + "' -o '" +
+                    (d / "p.tum").string() + "'",
+                d / "err.log"),
+            0);
+  const std::string err = slurp(d / "err.log");
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+}
+
+}  // namespace
+}  // namespace radarslam

@@ -1,0 +1,152 @@
+// Unit tests of the localisation module on a synthetic world (test/reloc/synthetic_world.h).
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "radarslam/core/errors.h"
+#include "radarslam/core/yaml_params.h"
+#include "radarslam/reloc/global_localizer.h"
+#include "radarslam/reloc/localizer.h"
+#include "radarslam/reloc/map_tracker.h"
+#include "synthetic_world.h"
+
+namespace radarslam {
+namespace {
+
+using test::SyntheticWorld;
+
+double deg(double rad) { return std::abs(std::remainder(rad, 2 * M_PI)) * 180 / M_PI; }
+
+class Reloc : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    world_ = new SyntheticWorld(SyntheticWorld::make(7));
+    map_ = new KeyframeMap(world_->map());
+  }
+  static void TearDownTestSuite() {
+    delete map_;
+    delete world_;
+  }
+  static SyntheticWorld* world_;
+  static KeyframeMap* map_;
+};
+SyntheticWorld* Reloc::world_ = nullptr;
+KeyframeMap* Reloc::map_ = nullptr;
+
+TEST_F(Reloc, GlobalFixOnRotatedTranslatedKeyframeView) {
+  const GlobalLocalizer global(*map_);
+  EXPECT_EQ(global.descriptorsComputed(), map_->keyframes.size());  // the map has none stored
+  for (const mrpt::math::TPose2D truth :
+       {mrpt::math::TPose2D{101.0, 1.3, 0.35}, mrpt::math::TPose2D{57.2, -0.8, -2.9},
+        mrpt::math::TPose2D{230.5, 0.5, 1.2}}) {
+    // Another noise and dropout draw than the map's keyframe clouds.
+    const auto cloud = world_->scan(truth, 99);
+    const GlobalFix fix = global.localize(cloud);
+    ASSERT_TRUE(fix.found) << "at x = " << truth.x;
+    EXPECT_LT(std::hypot(fix.pose.x - truth.x, fix.pose.y - truth.y), 0.3) << "at x = " << truth.x;
+    EXPECT_LT(deg(fix.pose.phi - truth.phi), 1.0) << "at x = " << truth.x;
+    EXPECT_LT(std::abs(map_->keyframes[fix.keyframe].pose.x - truth.x), 30.0);
+  }
+}
+
+TEST_F(Reloc, TrackerFollowsSequenceAndCovarianceIsPositiveDefinite) {
+  MapTracker tracker(*map_);
+  // A drive in the other lane with a slow weave; the prediction is the previous estimate
+  // composed with a noisy (biased) odometry increment.
+  mrpt::math::TPose2D est{5.0, 2.0, 0.0};
+  mrpt::math::TPose2D prev_truth = est;
+  double max_err = 0, max_head = 0;
+  int rebuilt = 0;
+  for (int i = 1; i <= 100; ++i) {
+    const double x = 5.0 + 2.3 * i;
+    const mrpt::math::TPose2D truth{x, 2.0 + 0.8 * std::sin(x / 20), 0.04 * std::cos(x / 20)};
+    const mrpt::poses::CPose2D motion = mrpt::poses::CPose2D(truth) - mrpt::poses::CPose2D(prev_truth);
+    const mrpt::poses::CPose2D noisy(motion.x() * 1.05 + 0.1, motion.y() - 0.1, motion.phi() + 0.01);
+    const mrpt::math::TPose2D predicted = (mrpt::poses::CPose2D(est) + noisy).asTPose();
+    const TrackResult r = tracker.track(world_->scan(truth, 5000 + i), predicted);
+    ASSERT_TRUE(r.accepted) << "scan " << i << ": " << r.reason;
+    rebuilt += r.submap_rebuilt;
+    est = r.icp.pose;
+    prev_truth = truth;
+    max_err = std::max(max_err, std::hypot(est.x - truth.x, est.y - truth.y));
+    max_head = std::max(max_head, deg(est.phi - truth.phi));
+    EXPECT_GT(r.icp.fit_score, 0.7);
+    const Eigen::Matrix3d& c = r.icp.covariance;
+    EXPECT_LT((c - c.transpose()).norm(), 1e-12);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(c);
+    EXPECT_GT(es.eigenvalues().minCoeff(), 0.0) << "scan " << i;
+    EXPECT_LT(std::sqrt(c(0, 0)), 0.5);
+  }
+  EXPECT_LT(max_err, 0.2);
+  EXPECT_LT(max_head, 0.5);
+  EXPECT_GE(rebuilt, 10);  // the submap follows the drive (230 m / 15 m)
+}
+
+TEST_F(Reloc, LossIsDetectedWhenTheScanIsFromElsewhere) {
+  MapTracker tracker(*map_);
+  const GlobalLocalizer global(*map_);
+  const SyntheticWorld other = SyntheticWorld::make(12345);
+  int false_tracks = 0, false_fixes = 0;
+  for (int i = 0; i < 4; ++i) {
+    const mrpt::math::TPose2D pose{20.0 + 60 * i, 0.5, 0.0};
+    const auto cloud = other.scan(pose, 700 + i);
+    false_tracks += tracker.track(cloud, pose).accepted;
+    false_fixes += global.localize(cloud).found;
+  }
+  EXPECT_EQ(false_tracks, 0);
+  EXPECT_EQ(false_fixes, 0);
+  // Beyond the end of the map there is no keyframe to track against.
+  const TrackResult r = tracker.track(world_->scan({380, 0, 0}, 1), {380, 0, 0});
+  EXPECT_FALSE(r.accepted);
+  // A prediction far off (a wrong relocalisation) is not accepted either: the ICP either fails or
+  // converges to a pose too far from the prediction.
+  const TrackResult off = tracker.track(world_->scan({100, 0, 0}, 2), {100, 0, 1.2});
+  EXPECT_FALSE(off.accepted && std::hypot(off.icp.pose.x - 100, off.icp.pose.y) > 1.0);
+}
+
+TEST(RelocCovariance, CorridorIsUncertainAlongTheWalls) {
+  // Two long parallel walls: the position along them is unobservable, across them well known.
+  std::vector<Eigen::Vector2d> pts;
+  for (double x = -80; x <= 80; x += 0.2) {
+    pts.emplace_back(x, 6.0);
+    pts.emplace_back(x, -6.0);
+  }
+  const LocalSubmap submap = LocalSubmap::fromPoints(pts, 0.5);
+  std::vector<RadarPoint> scan;
+  for (double x = -50; x <= 50; x += 0.5)
+    for (const double y : {6.0, -6.0}) {
+      RadarPoint p;
+      p.x = static_cast<float>(x);
+      p.y = static_cast<float>(y + 0.03 * std::sin(7 * x));
+      scan.push_back(p);
+    }
+  const IcpResult r = submap.registerScan(scan, {0.0, 0.3, 0.01}, {});
+  EXPECT_LT(std::abs(r.pose.y), 0.05);
+  EXPECT_LT(deg(r.pose.phi), 0.1);
+  EXPECT_GT(r.covariance(0, 0), 100 * r.covariance(1, 1));
+}
+
+TEST(RelocParams, LoadFromYamlAndRejectUnknownKeys) {
+  const YamlParams yaml = YamlParams::fromText(
+      "localization:\n  max_missed_scans: 5\n  global:\n    candidates: 9\n    m2dp:\n      rings: 6\n"
+      "  tracker:\n    min_fit_score: 0.5\n    icp:\n      cauchy_m: 0.7\n    submap:\n      radius_m: 80\n");
+  LocalizerParams p;
+  loadParams(yaml.section("localization"), p);
+  EXPECT_NO_THROW(yaml.rejectUnknownKeys());
+  EXPECT_EQ(p.max_missed_scans, 5);
+  EXPECT_EQ(p.global.candidates, 9u);
+  EXPECT_EQ(p.global.m2dp.rings, 6);
+  EXPECT_DOUBLE_EQ(p.tracker.min_fit_score, 0.5);
+  EXPECT_DOUBLE_EQ(p.tracker.icp.cauchy_m, 0.7);
+  EXPECT_DOUBLE_EQ(p.tracker.submap.radius_m, 80);
+  const YamlParams typo = YamlParams::fromText("localization:\n  tracker:\n    min_fit_scor: 0.5\n");
+  LocalizerParams q;
+  loadParams(typo.section("localization"), q);
+  EXPECT_THROW(typo.rejectUnknownKeys(), InputError);
+  const YamlParams bad = YamlParams::fromText("localization:\n  tracker:\n    min_fit_score: 2\n");
+  EXPECT_THROW(loadParams(bad.section("localization"), q), InputError);
+}
+
+}  // namespace
+}  // namespace radarslam
