@@ -81,7 +81,7 @@ int run(int argc, char** argv) {
       logger().logFmt(LVL_INFO, "SIGHUP: reloading");
       try {
         server.load();
-      } catch (const InputError& e) {
+      } catch (const std::exception& e) {
         logger().logFmt(mrpt::system::LVL_WARN, "reload failed, keeping revision %u: %s", server.revision(),
                         e.what());
       }

@@ -1,6 +1,7 @@
 #include "map_server.h"
 
 #include <chrono>
+#include <exception>
 #include <fstream>
 #include <sstream>
 
@@ -111,7 +112,7 @@ bool MapServer::reloadIfChanged() {
     logger().logFmt(LVL_INFO, "map '%s' changed on disk, reloading", map_name_.c_str());
     load();
     return true;
-  } catch (const InputError& e) {
+  } catch (const std::exception& e) {  // InputError (bad map) or a DDS write error
     if (*sha != failed_manifest_sha_)
       logger().logFmt(LVL_WARN, "keeping revision %u: %s (will retry)", revision_, e.what());
     failed_manifest_sha_ = *sha;
