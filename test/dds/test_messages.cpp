@@ -163,3 +163,21 @@ TEST(DdsDomain, BadDomainIdAndConfigAreInputErrors) {
 
 }  // namespace
 }  // namespace radarslam
+
+namespace radarslam {
+namespace {
+
+// ROS 2 (rmw_cyclonedds) matches by these exact type names; rt/ is the ROS 2 topic prefix.
+TEST(DdsMessages, TypeAndTopicNamesFollowRos2Conventions) {
+  EXPECT_EQ(dds::ddsTypeName<dds::OccupancyGridMsg>(), "nav_msgs::msg::dds_::OccupancyGrid_");
+  EXPECT_EQ(dds::ddsTypeName<dds::PointCloud2Msg>(), "sensor_msgs::msg::dds_::PointCloud2_");
+  EXPECT_EQ(dds::ddsTypeName<dds::OctomapMsg>(), "octomap_msgs::msg::dds_::Octomap_");
+  EXPECT_EQ(dds::ddsTypeName<dds::PoseWithCovarianceStampedMsg>(),
+            "geometry_msgs::msg::dds_::PoseWithCovarianceStamped_");
+  EXPECT_EQ(dds::ddsTypeName<dds::MapInfoMsg>(), "radarslam::msg::dds_::MapInfo_");
+  EXPECT_EQ(dds::ddsTypeName<dds::RadarScanMsg>(), "radarslam::msg::dds_::RadarScan_");
+  EXPECT_STREQ(dds::kMapTopic, "rt/map");
+}
+
+}  // namespace
+}  // namespace radarslam

@@ -263,9 +263,15 @@ bool WaitSet::wait(std::chrono::milliseconds timeout) {
   return n > 0;
 }
 
+template <class Msg>
+std::string ddsTypeName() {
+  return detail::CType<Msg>::descriptor()->m_typename;
+}
+
 #define RADARSLAM_DDS_INSTANTIATE(MSG) \
   template class Publisher<MSG>;       \
-  template class Subscription<MSG>
+  template class Subscription<MSG>;    \
+  template std::string ddsTypeName<MSG>()
 
 RADARSLAM_DDS_INSTANTIATE(OccupancyGridMsg);
 RADARSLAM_DDS_INSTANTIATE(PointCloud2Msg);

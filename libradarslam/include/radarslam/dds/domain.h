@@ -43,6 +43,10 @@ class Domain {
   std::int32_t participant_ = 0;
 };
 
+/// The DDS type name of a message (ROS 2 naming, e.g. "nav_msgs::msg::dds_::OccupancyGrid_").
+template <class Msg>
+std::string ddsTypeName();
+
 /// Quality of service of one topic. Latched (maps, as nav2/mrpt map servers): RELIABLE,
 /// TRANSIENT_LOCAL, KEEP_LAST 1, so a subscriber that joins later still gets the last sample.
 struct TopicQos {
