@@ -56,7 +56,7 @@ std::size_t PoseGraph::addLoopEdge(std::size_t from, std::size_t to, const mrpt:
 }
 
 double PoseGraph::edgeChi2(std::size_t i) const {
-  const PoseGraphEdge& e = edges_.at(i);
+  const GraphEdge& e = edges_.at(i);
   const mrpt::poses::CPose2D a(poses_[e.from]), b(poses_[e.to]), z(e.relative);
   const mrpt::poses::CPose2D err = (-z) + ((-a) + b);  // z^-1 (+) (a^-1 (+) b)
   const Eigen::Vector3d r(err.x(), err.y(), mrpt::math::wrapToPi(err.phi()));

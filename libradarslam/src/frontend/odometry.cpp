@@ -174,16 +174,21 @@ struct RadarOdometry::Impl {
       last_pose = step.pose = {0, 0, 0};
       step.status = TrackingStatus::Initialised;
       step.new_keyframe = true;
+      step.keyframe_points = keyframe.features.xy;
       trajectory.push_back({step.stamp, step.pose});
       return step;
     }
 
     const double dt = toSeconds(step.stamp - last_stamp);
+    // A gap in the data (a timestamp jump, many dropped scans): constant velocity across it would
+    // extrapolate far off. Re-initialise instead: no predicted motion, wide search radius, and the
+    // velocity is re-estimated from the next pair (one spanning the gap says nothing about it).
+    const bool gap = dt > params.tracking.max_prediction_gap_s;
     const mrpt::math::TPose2D predicted_delta =
-        velocity_known ? twistToPose(velocity, dt) : mrpt::math::TPose2D();
+        velocity_known && !gap ? twistToPose(velocity, dt) : mrpt::math::TPose2D();
     const mrpt::math::TPose2D kf_to_last = last_pose - keyframe.pose;  // T_k_prev
     const mrpt::math::TPose2D prior = kf_to_last + predicted_delta;
-    const bool wide = !velocity_known || lost_count > 0;
+    const bool wide = !velocity_known || lost_count > 0 || gap;
     const double radius = wide ? params.matching.init_radius_m : params.matching.radius_m;
 
     BodyVelocity v = velocity_known ? velocity : BodyVelocity{};
@@ -284,12 +289,22 @@ struct RadarOdometry::Impl {
       lost_count = 0;
       step.pose = keyframe.pose + T;  // eq. (2): C_t = C_k T_tk^-1, with T = T_tk^-1
       velocity = v;
-      velocity_known = true;
+      velocity_known = !gap;
       f.compensate(cur_compensation, mc);
       if (needNewKeyframe(params.keyframes, T, step.inliers)) {
+        // Links for local mapping: descriptor inliers that the final estimate still explains.
+        const double gate2 = params.outliers.inlier_gate_m * params.outliers.inlier_gate_m;
+        const double c = std::cos(T.phi), s = std::sin(T.phi);
+        for (const auto& m : inliers) {
+          const Eigen::Vector2d& q = f.features.xy[m.cur_index];
+          const Eigen::Vector2d pred(c * q.x() - s * q.y() + T.x, s * q.x() + c * q.y() + T.y);
+          if ((pred - keyframe.features.xy[m.ref_index]).squaredNorm() < gate2)
+            step.keyframe_links.emplace_back(m.ref_index, m.cur_index);
+        }
         f.pose = step.pose;
         keyframe = std::move(f);
         step.new_keyframe = true;
+        step.keyframe_points = keyframe.features.xy;
       }
     } else {
       // Tracking loss: constant-velocity prediction, re-initialise on this scan.
@@ -304,6 +319,7 @@ struct RadarOdometry::Impl {
         f.compensate(velocity, mc && velocity_known);
         keyframe = std::move(f);
         step.new_keyframe = true;
+        step.keyframe_points = keyframe.features.xy;
       }
       logger().logFmt(mrpt::system::LVL_WARN, "odometry: tracking lost at %.3f s (%d matches, %d inliers)",
                       toSeconds(step.stamp), step.matches, step.inliers);

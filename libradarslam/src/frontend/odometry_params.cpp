@@ -65,6 +65,7 @@ void loadParams(const YamlParams& yaml, OdometryParams& p) {
   t.get("motion_compensation", p.tracking.motion_compensation);
   t.get("acceleration_aware", p.tracking.acceleration_aware);
   t.get("compensation_passes", p.tracking.compensation_passes);
+  t.get("max_prediction_gap_s", p.tracking.max_prediction_gap_s);
 
   const std::string& where = yaml.origin();
   if (p.outliers.consistency != "distance" && p.outliers.consistency != "displacement")
@@ -75,6 +76,8 @@ void loadParams(const YamlParams& yaml, OdometryParams& p) {
   if (p.keypoints.max_keypoints < 10)
     throw InputError(where, "odometry.keypoints.max_keypoints must be >= 10");
   if (p.tracking.min_inliers < 3) throw InputError(where, "odometry.tracking.min_inliers must be >= 3");
+  if (!(p.tracking.max_prediction_gap_s > 0))
+    throw InputError(where, "odometry.tracking.max_prediction_gap_s must be > 0");
 }
 
 }  // namespace radarslam

@@ -29,7 +29,7 @@ struct PoseGraphParams {
 /// Overrides `params` from max_iterations, loop_chi2_gate, max_loop_rejections.
 void loadParams(const YamlParams& yaml, PoseGraphParams& params);
 
-struct PoseGraphEdge {
+struct GraphEdge {
   std::size_t from = 0, to = 0;
   mrpt::math::TPose2D relative;                               ///< pose of `to` in the frame of `from`
   Eigen::Matrix3d information = Eigen::Matrix3d::Identity();  ///< of relative (x, y, phi)
@@ -65,7 +65,7 @@ class PoseGraph {
   std::size_t numNodes() const { return poses_.size(); }
   const mrpt::math::TPose2D& pose(std::size_t i) const { return poses_.at(i); }
   const std::vector<mrpt::math::TPose2D>& poses() const { return poses_; }
-  const std::vector<PoseGraphEdge>& edges() const { return edges_; }
+  const std::vector<GraphEdge>& edges() const { return edges_; }
   /// e^T Omega e of an edge at the current poses (e = relative^-1 (+) (from^-1 (+) to)).
   double edgeChi2(std::size_t edge) const;
   /// Sum of edgeChi2 over active edges.
@@ -76,7 +76,7 @@ class PoseGraph {
                       const Eigen::Matrix3d& information, bool is_loop);
   PoseGraphParams params_;
   std::vector<mrpt::math::TPose2D> poses_;
-  std::vector<PoseGraphEdge> edges_;
+  std::vector<GraphEdge> edges_;
 };
 
 }  // namespace radarslam

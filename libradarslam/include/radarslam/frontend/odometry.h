@@ -9,7 +9,11 @@
 // to track against (a blank scan), in which case the old keyframe is kept for up to
 // tracking.keep_keyframe_when_lost scans. After a loss the next scan is matched with the wide
 // initial search radius.
+#include <Eigen/Core>
+
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "radarslam/core/trajectory.h"
 #include "radarslam/frontend/motion_compensation.h"
@@ -36,6 +40,12 @@ struct OdometryStep {
   int keypoints = 0, matches = 0, inliers = 0;
   bool clique_exact = true;
   bool new_keyframe = false;
+  /// When new_keyframe: the new keyframe's keypoints in its sensor frame at the reference time
+  /// (motion compensated) - the observations local mapping turns into map points - and, when it
+  /// was tracked (not a re-initialisation), the inlier links (previous keyframe's keypoint index,
+  /// new keyframe's keypoint index) that say which keypoints are the same landmark.
+  std::vector<Eigen::Vector2d> keyframe_points;
+  std::vector<std::pair<int, int>> keyframe_links;
   StageTimes times;
 };
 

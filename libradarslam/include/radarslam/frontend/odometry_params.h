@@ -31,6 +31,7 @@ struct TrackingParams {
   bool motion_compensation = true;
   bool acceleration_aware = true;  ///< per-scan velocity from neighbouring pairs, not the pair's mean
   int compensation_passes = 2;     ///< re-compensate with the refined velocity and refine again
+  double max_prediction_gap_s = 1.0;  ///< longer intervals (data gaps) re-initialise, no constant velocity
 };
 
 struct OdometryParams {

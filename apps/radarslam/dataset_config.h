@@ -1,0 +1,23 @@
+#pragma once
+// Shared by the commands that run the pipeline: the default parameter file for a dataset kind
+// (config/<sensor>.yaml), and the progress clock format.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <radarslam/io/dataset.h>
+
+namespace radarslam::cli {
+
+/// config/<sensor>.yaml name for a dataset kind ("" for none, e.g. a rawlog).
+std::string defaultConfigName(DatasetKind kind);
+
+/// The parameter file to use: `explicit_path` if given, else config/<name> from
+/// $RADARSLAM_CONFIG_DIR, else the first `config` folder walking up from the executable (build
+/// trees live inside the source tree), else none (built-in defaults).
+std::optional<std::filesystem::path> findConfig(const std::string& explicit_path, DatasetKind kind);
+
+/// "m:ss"
+std::string clockText(double seconds);
+
+}  // namespace radarslam::cli

@@ -1,0 +1,40 @@
+#pragma once
+// Scoring loop closures against ground truth (for reports and tests; SLAM never needs it).
+//  - A keyframe "has a true loop" if an earlier keyframe, outside the detector's exclusion (at
+//    least exclude_recent keyframes and exclude_recent_distance_m of ground-truth path before
+//    it), lies within true_loop_distance_m.
+//  - Recall = keyframes with a true loop for which an accepted, correct loop was found / keyframes
+//    with a true loop.
+//  - An accepted loop is false if its relative pose is more than max_error_m or max_error_deg
+//    from the ground-truth relative pose of the two keyframes (a correct relative pose between
+//    keyframes farther apart than true_loop_distance_m is still a valid loop).
+#include <cstddef>
+#include <vector>
+
+#include "radarslam/core/trajectory.h"
+#include "radarslam/map/keyframe_map.h"
+#include "radarslam/slam/radar_slam.h"
+
+namespace radarslam {
+
+struct LoopEvaluationParams {
+  double true_loop_distance_m = 6.0;
+  std::size_t exclude_recent = 30;
+  double exclude_recent_distance_m = 50.0;
+  double max_error_m = 2.0;
+  double max_error_deg = 3.0;
+};
+
+struct LoopEvaluation {
+  std::size_t keyframes_evaluated = 0;  ///< keyframes with a ground-truth pose
+  std::size_t keyframes_with_true_loop = 0, keyframes_with_loop_found = 0;
+  std::size_t accepted = 0, false_accepted = 0;  ///< by verification (before the graph's test)
+  std::size_t false_in_graph = 0;               ///< false loops still active after optimisation
+  double recall = 0;
+  double max_error_m = 0, max_error_deg = 0;  ///< over correct accepted loops
+};
+
+LoopEvaluation evaluateLoops(const KeyframeMap& map, const std::vector<LoopRecord>& loops,
+                             const Trajectory& ground_truth, const LoopEvaluationParams& params = {});
+
+}  // namespace radarslam

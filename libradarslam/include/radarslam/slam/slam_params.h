@@ -1,0 +1,83 @@
+#pragma once
+// Every parameter of the full RadarSLAM system (paper Sec. III), with defaults. config/<sensor>.yaml
+// overrides the front end under `cartesian:`/`odometry:` (frontend/odometry_params.h) and the rest
+// under `slam:` {local_mapping, odometry_edges, loop_closure {peak_cloud, m2dp, detector, verifier},
+// pose_graph}.
+#include "radarslam/backend/pose_graph.h"
+#include "radarslam/frontend/odometry_params.h"
+#include "radarslam/loop/loop_detector.h"
+#include "radarslam/loop/loop_verifier.h"
+#include "radarslam/loop/m2dp.h"
+#include "radarslam/radar/peak_cloud.h"
+
+namespace radarslam {
+
+class YamlParams;
+
+/// Local mapping (Sec. III-B): map points and local bundle adjustment.
+struct LocalMappingParams {
+  bool bundle_adjustment = true;
+  int window_keyframes = 6;          ///< newest keyframes whose poses the local BA optimises
+  int max_iterations = 8;            ///< Levenberg-Marquardt iterations per local BA
+  double observation_sigma_m = 0.1;  ///< keypoint position noise (Cartesian pixel 0.25 m / sqrt(12) ~ 0.07)
+  double huber_sigmas = 2.0;         ///< robust kernel width, in sigmas
+  int min_observations = 3;          ///< map points seen by fewer keyframes are culled (paper: <= 2)
+  /// Odometry (keyframe-to-keyframe) priors inside the BA window, so a window with few shared
+  /// points cannot drift freely: the tracked relative pose with these sigmas.
+  double prior_sigma_xy_m = 0.3;
+  double prior_sigma_phi_rad = 0.01;
+};
+
+/// Odometry edges of the pose graph (Sec. III-D): keyframe-to-keyframe relative poses with a
+/// diagonal information from sigma = base + per_metre * distance (a lost scan: x lost_factor).
+struct OdometryEdgeParams {
+  double sigma_xy_base_m = 0.02;
+  double sigma_xy_per_m = 0.01;
+  double sigma_phi_base_rad = 0.001;
+  double sigma_phi_per_m = 0.0002;
+  double lost_factor = 10.0;
+};
+
+/// Loop closing (Sec. III-C).
+struct LoopClosingParams {
+  bool enabled = true;
+  PeakCloudParams peak_cloud;       ///< Algorithm 1
+  M2DPParams m2dp;
+  LoopDetectorParams detector;
+  LoopVerifierParams verifier;
+  int max_verifications = 3;        ///< candidates verified per keyframe (best descriptor first)
+  /// Drift gate (ours; the paper relies on verification alone). A loop says where the query
+  /// keyframe really is; odometry cannot have drifted arbitrarily far since the matched keyframe,
+  /// so a loop implying a correction larger than drift_base_m + drift_fraction * (distance driven
+  /// between the two keyframes), or a heading correction larger than drift_base_deg +
+  /// drift_deg_per_m * distance, is rejected. Candidates whose current estimate is farther than
+  /// verifier.max_translation_m + that bound are not even verified (saves most verifications).
+  /// Repeated structure (a city of similar blocks) is what this stops: verification alone cannot
+  /// tell two identical blocks apart. drift_fraction <= 0 disables the gate.
+  double drift_fraction = 0.05;
+  double drift_base_m = 5.0;
+  double drift_base_deg = 5.0;
+  double drift_deg_per_m = 0.01;
+  /// After accepting a loop, the graph is optimised only if the loop moves the query keyframe by
+  /// more than this from its current estimate; consistent loops (e.g. along a revisit already
+  /// corrected) are just added. The final optimisation (finish()) uses every loop.
+  double optimise_min_correction_m = 0.5;
+  double optimise_min_correction_deg = 0.5;
+};
+
+struct SlamParams {
+  OdometryParams odometry;
+  LocalMappingParams local_mapping;
+  OdometryEdgeParams odometry_edges;
+  LoopClosingParams loop_closing;
+  PoseGraphParams pose_graph;
+  /// 1: everything runs in the caller's thread (deterministic); >= 2: local mapping and loop
+  /// closing run in their own threads, as in the paper.
+  int threads = 3;
+};
+
+/// Overrides `params` from `yaml` (the front end via loadParams(yaml, params.odometry), the rest
+/// from the `slam:` section). Throws InputError for bad values.
+void loadParams(const YamlParams& yaml, SlamParams& params);
+
+}  // namespace radarslam

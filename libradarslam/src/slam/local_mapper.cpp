@@ -1,0 +1,145 @@
+#include "local_mapper.h"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+
+#include "radarslam/slam/local_bundle_adjustment.h"
+
+namespace radarslam::slam_detail {
+
+void LocalMapper::insert(const KeyframeJob& job) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // Peak cloud (Algorithm 1) moved to the scan's reference time, and its M2DP descriptor (both
+  // signs of the PCA axis, see loop/m2dp.h): outside the lock, this is the expensive part.
+  auto cloud = std::make_shared<std::vector<RadarPoint>>(
+      motionCompensated(extractPeakCloud(*job.scan, params_.loop_closing.peak_cloud), *job.scan, job.velocity));
+  SlamKeyframe kf;
+  kf.id = job.id;
+  kf.stamp = job.stamp;
+  kf.odom_pose = job.odom_pose;
+  kf.lost = job.lost;
+  kf.travelled_m = job.travelled_m;
+  kf.descriptor = computeM2DP(*cloud, params_.loop_closing.m2dp);
+  kf.descriptor_flipped = computeM2DP(*cloud, params_.loop_closing.m2dp, true);
+  kf.cloud = std::move(cloud);
+  kf.keypoints = job.keypoints;
+  kf.keypoint_point.assign(job.keypoints.size(), -1);
+  {
+    std::lock_guard lock(state_.mutex);
+    if (job.id != state_.keyframes.size()) throw std::logic_error("local mapping: keyframes out of order");
+    if (job.id == 0) {
+      kf.pose = job.odom_pose;
+    } else {
+      const SlamKeyframe& prev = state_.keyframes.back();
+      kf.odom_edge = between(prev.odom_pose, job.odom_pose);
+      kf.pose = compose(prev.pose, kf.odom_edge);
+    }
+    associate(kf, job);
+    state_.keyframes.push_back(std::move(kf));
+    const int window = params_.local_mapping.window_keyframes;
+    if (job.id >= static_cast<std::uint64_t>(window)) retire(job.id - window);
+  }
+  if (params_.local_mapping.bundle_adjustment && job.id > 0) bundleAdjust(job.id);
+  std::lock_guard lock(state_.mutex);
+  state_.stats.local_mapping_ms +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void LocalMapper::associate(SlamKeyframe& kf, const KeyframeJob& job) {
+  if (job.id == 0 || job.lost) return;
+  SlamKeyframe& prev = state_.keyframes.back();
+  for (const auto& [pi, ci] : job.links) {
+    if (pi < 0 || ci < 0 || static_cast<std::size_t>(pi) >= prev.keypoints.size() ||
+        static_cast<std::size_t>(ci) >= kf.keypoints.size() || kf.keypoint_point[ci] >= 0)
+      continue;
+    std::int64_t& id = prev.keypoint_point[pi];
+    if (id < 0) {
+      SlamMapPoint mp;
+      mp.xy = transformPoint(prev.pose, prev.keypoints[pi]);
+      mp.reference = prev.id;
+      mp.observations.push_back({prev.id, prev.keypoints[pi]});
+      id = static_cast<std::int64_t>(state_.points.size());
+      state_.points.push_back(std::move(mp));
+    }
+    state_.points[id].observations.push_back({kf.id, kf.keypoints[ci]});
+    kf.keypoint_point[ci] = id;
+  }
+}
+
+void LocalMapper::retire(std::uint64_t id) {
+  // The keyframe leaves the BA window: its association data goes, and so do the map points whose
+  // newest observation it was if too few keyframes saw them (paper: points seen by <= 2 culled).
+  SlamKeyframe& kf = state_.keyframes[id];
+  for (const std::int64_t p : kf.keypoint_point) {
+    if (p < 0) continue;
+    SlamMapPoint& mp = state_.points[p];
+    if (mp.observations.back().keyframe == id &&
+        static_cast<int>(mp.observations.size()) < params_.local_mapping.min_observations) {
+      mp.culled = true;
+      mp.observations.clear();
+      mp.observations.shrink_to_fit();
+    }
+  }
+  kf.keypoints = {};
+  kf.keypoint_point = {};
+}
+
+void LocalMapper::bundleAdjust(std::uint64_t newest) {
+  const auto& lp = params_.local_mapping;
+  BAProblem pb;
+  std::map<std::uint64_t, std::size_t> pose_index;  // keyframe id -> problem pose
+  std::vector<std::uint64_t> pose_ids;
+  std::vector<std::size_t> point_ids;
+  std::uint64_t corrections = 0;
+  const std::uint64_t first = newest + 1 > static_cast<std::uint64_t>(lp.window_keyframes)
+                                  ? newest + 1 - lp.window_keyframes
+                                  : 0;
+  {
+    std::lock_guard lock(state_.mutex);
+    corrections = state_.corrections;
+    auto addPose = [&](std::uint64_t id, bool fixed) {
+      auto [it, inserted] = pose_index.emplace(id, pb.poses.size());
+      if (inserted) {
+        pb.poses.push_back(state_.keyframes[id].pose);
+        pb.fixed.push_back(fixed);
+        pose_ids.push_back(id);
+      }
+      return it->second;
+    };
+    // The oldest window keyframe is fixed when nothing outside the window anchors the window.
+    for (std::uint64_t id = first; id <= newest; ++id) addPose(id, id == first);
+    std::vector<char> seen(state_.points.size(), 0);
+    for (std::uint64_t id = first; id <= newest; ++id) {
+      for (const std::int64_t p : state_.keyframes[id].keypoint_point) {
+        if (p < 0 || seen[p] || state_.points[p].culled) continue;
+        seen[p] = 1;
+        const std::size_t j = pb.points.size();
+        pb.points.push_back(state_.points[p].xy);
+        point_ids.push_back(static_cast<std::size_t>(p));
+        for (const auto& o : state_.points[p].observations)
+          pb.observations.push_back({addPose(o.keyframe, o.keyframe < first), j, o.z});
+      }
+    }
+    for (std::uint64_t id = first + 1; id <= newest; ++id)
+      if (!state_.keyframes[id].lost)
+        pb.priors.push_back({pose_index.at(id - 1), pose_index.at(id), state_.keyframes[id].odom_edge});
+  }
+  if (pb.observations.empty()) return;
+  solveLocalBundleAdjustment(pb, lp);
+
+  std::lock_guard lock(state_.mutex);
+  ++state_.stats.bundle_adjustments;
+  if (state_.corrections != corrections) return;  // a loop correction moved everything meanwhile
+  for (std::size_t i = 0; i < pose_ids.size(); ++i)
+    if (!pb.fixed[i]) state_.keyframes[pose_ids[i]].pose = pb.poses[i];
+  for (std::size_t j = 0; j < point_ids.size(); ++j) state_.points[point_ids[j]].xy = pb.points[j];
+  for (std::uint64_t id = first + 1; id <= newest; ++id)
+    if (!state_.keyframes[id].lost)
+      state_.keyframes[id].odom_edge = between(state_.keyframes[id - 1].pose, state_.keyframes[id].pose);
+  // Keyframes inserted after `newest` meanwhile (threads) follow their predecessor.
+  for (std::uint64_t id = newest + 1; id < state_.keyframes.size(); ++id)
+    state_.keyframes[id].pose = compose(state_.keyframes[id - 1].pose, state_.keyframes[id].odom_edge);
+}
+
+}  // namespace radarslam::slam_detail

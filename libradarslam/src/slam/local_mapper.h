@@ -1,0 +1,44 @@
+#pragma once
+// Local mapping (paper Sec. III-B) for one new keyframe: its peak cloud (Algorithm 1, motion
+// compensated) and M2DP descriptor for loop closing, map points from the tracker's keypoint
+// links (a keypoint linked to one of the previous keyframe's becomes another observation of that
+// map point), local bundle adjustment over the newest keyframes, and culling of map points seen
+// by too few keyframes once they leave the window.
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "radarslam/obs/CObservationRadarScan.h"
+#include "radarslam/radar/motion_compensation.h"
+#include "slam_state.h"
+
+namespace radarslam::slam_detail {
+
+/// What tracking hands to local mapping for each new keyframe.
+struct KeyframeJob {
+  std::uint64_t id = 0;
+  StampNs stamp = 0;
+  TPose2D odom_pose;
+  bool lost = false;
+  double travelled_m = 0;
+  BodyVelocity velocity;
+  std::vector<Eigen::Vector2d> keypoints;
+  std::vector<std::pair<int, int>> links;
+  std::shared_ptr<const CObservationRadarScan> scan;
+};
+
+class LocalMapper {
+ public:
+  LocalMapper(SlamState& state, const SlamParams& params) : state_(state), params_(params) {}
+  /// Inserts the keyframe (ids arrive in order 0, 1, 2, ...) and runs the local BA.
+  void insert(const KeyframeJob& job);
+
+ private:
+  void associate(SlamKeyframe& kf, const KeyframeJob& job);
+  void bundleAdjust(std::uint64_t newest);
+  void retire(std::uint64_t id);
+  SlamState& state_;
+  const SlamParams& params_;
+};
+
+}  // namespace radarslam::slam_detail

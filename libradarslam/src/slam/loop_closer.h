@@ -1,0 +1,25 @@
+#pragma once
+// Loop closing (paper Sec. III-C) for one keyframe after local mapping: M2DP retrieval from the
+// kd-tree of earlier keyframes (recent ones excluded), geometric verification of the best
+// candidates (loop/loop_verifier.h: global consensus search, ICP, uniqueness test), and for an
+// accepted loop the pose-graph optimisation when the loop disagrees with the current estimate.
+#include "radarslam/loop/loop_detector.h"
+#include "slam_state.h"
+
+namespace radarslam::slam_detail {
+
+class LoopCloser {
+ public:
+  LoopCloser(SlamState& state, const SlamParams& params)
+      : state_(state), params_(params), detector_(params.loop_closing.detector) {}
+  /// Searches loops for keyframe `id` (after local mapping inserted it), then adds it to the
+  /// database. Keyframes must arrive in id order.
+  void process(std::uint64_t id);
+
+ private:
+  SlamState& state_;
+  const SlamParams& params_;
+  LoopDetector detector_;
+};
+
+}  // namespace radarslam::slam_detail

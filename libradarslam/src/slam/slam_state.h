@@ -1,0 +1,85 @@
+#pragma once
+// The state the SLAM threads share (keyframes, map points, accepted loops), guarded by one
+// mutex. Keyframe ids are indices into `keyframes`. Private to the slam module.
+#include <mrpt/math/TPose2D.h>
+#include <Eigen/Core>
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "radarslam/core/time.h"
+#include "radarslam/loop/m2dp.h"
+#include "radarslam/radar/peak_cloud.h"
+#include "radarslam/slam/radar_slam.h"
+
+namespace radarslam::slam_detail {
+
+using mrpt::math::TPose2D;
+
+/// a (+) b
+inline TPose2D compose(const TPose2D& a, const TPose2D& b) {
+  const double c = std::cos(a.phi), s = std::sin(a.phi);
+  return {a.x + c * b.x - s * b.y, a.y + s * b.x + c * b.y, std::remainder(a.phi + b.phi, 2 * M_PI)};
+}
+/// a^-1 (+) b: b in the frame of a
+inline TPose2D between(const TPose2D& a, const TPose2D& b) {
+  const double c = std::cos(a.phi), s = std::sin(a.phi), dx = b.x - a.x, dy = b.y - a.y;
+  return {c * dx + s * dy, -s * dx + c * dy, std::remainder(b.phi - a.phi, 2 * M_PI)};
+}
+inline Eigen::Vector2d transformPoint(const TPose2D& a, const Eigen::Vector2d& p) {
+  const double c = std::cos(a.phi), s = std::sin(a.phi);
+  return {a.x + c * p.x() - s * p.y(), a.y + s * p.x() + c * p.y()};
+}
+inline Eigen::Vector2d inverseTransformPoint(const TPose2D& a, const Eigen::Vector2d& p) {
+  const double c = std::cos(a.phi), s = std::sin(a.phi), dx = p.x() - a.x, dy = p.y() - a.y;
+  return {c * dx + s * dy, -s * dx + c * dy};
+}
+
+struct SlamKeyframe {
+  std::uint64_t id = 0;
+  StampNs stamp = 0;
+  TPose2D pose;       ///< map frame, current estimate
+  TPose2D odom_pose;  ///< the tracker's (odometry) frame
+  TPose2D odom_edge;  ///< measured pose relative to the previous keyframe (refined by local BA)
+  bool lost = false;  ///< created by a tracking loss: odom_edge is a prediction
+  double travelled_m = 0;
+  std::shared_ptr<const std::vector<RadarPoint>> cloud;  ///< peak cloud, sensor frame, compensated
+  M2DPDescriptor descriptor, descriptor_flipped;
+  // Local mapping's association data, kept while the keyframe is in the BA window.
+  std::vector<Eigen::Vector2d> keypoints;
+  std::vector<std::int64_t> keypoint_point;  ///< map point index per keypoint, or -1
+};
+
+struct SlamMapPoint {
+  Eigen::Vector2d xy;  ///< map frame
+  std::uint64_t reference = 0;  ///< keyframe that first saw it: loop corrections move it with that one
+  struct Observation {
+    std::uint64_t keyframe;
+    Eigen::Vector2d z;  ///< sensor frame
+  };
+  std::vector<Observation> observations;
+  bool culled = false;
+};
+
+struct AcceptedLoop {
+  std::uint64_t from = 0, to = 0;  ///< match (older), query
+  TPose2D relative;                ///< `to` in the frame of `from`
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
+  std::size_t record = 0;  ///< index into records
+  bool active = true;
+};
+
+struct SlamState {
+  mutable std::mutex mutex;
+  std::vector<SlamKeyframe> keyframes;
+  std::vector<SlamMapPoint> points;
+  std::vector<AcceptedLoop> loops;
+  std::vector<LoopRecord> records;
+  std::uint64_t corrections = 0;  ///< bumped by every pose-graph correction (invalidates a running BA)
+  SlamStats stats;
+};
+
+}  // namespace radarslam::slam_detail
