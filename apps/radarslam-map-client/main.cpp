@@ -96,6 +96,8 @@ int run(int argc, char** argv) {
     ws.attach(
         *(octo_sub = std::make_unique<dds::Subscription<dds::OctomapMsg>>(dom, dds::kOctomapTopic, latched)));
 
+  logger().logFmt(mrpt::system::LVL_INFO, "waiting for the map on DDS domain %u (layers %s, timeout %.1f s)",
+                  domain.getValue(), layers.getValue().c_str(), timeout.getValue());
   std::optional<dds::MapInfoMsg> info;
   std::optional<dds::OccupancyGridMsg> grid;
   std::optional<dds::PointCloud2Msg> cloud;

@@ -183,33 +183,49 @@ TEST(MapServer, ReloadsAChangedMapAndSurvivesARestart) {
   EXPECT_EQ(yamlValue(test::readText(tmp.path() / "c" / "map_info.yaml"), "grid_sha256"), sha_b);
 }
 
-TEST(MapServer, AClientKilledMidTransferDoesNotDisturbTheOthers) {
+TEST(MapServer, KilledAndFrozenClientsDoNotDisturbTheOthersOrReloads) {
   test::TempDir tmp;
   const fs::path map_dir = tmp.path() / "big";
-  saveMap(test::syntheticMap(3, 1000, 60.0, 6), map_dir);  // ~2600 x 2600 cells at 0.05 m
+  saveMap(test::syntheticMap(3, 1000, 60.0, 6), map_dir);  // ~2600 x 2600 cells (6.8 MB) at 0.05 m
   const unsigned dom = test::testDomainId(4);
-  Child server(serverArgs(map_dir, dom, {"--layers", "grid", "--resolution", "0.05"}), tmp.path() / "server");
+  Child server(serverArgs(map_dir, dom, {"--layers", "grid", "--resolution", "0.05", "--poll", "0.2"}),
+               tmp.path() / "server");
   ASSERT_TRUE(server.waitForLog("published map", 20)) << server.err();
-  std::vector<std::unique_ptr<Child>> clients;
-  for (int i = 0; i < 3; ++i)
-    clients.push_back(
-        std::make_unique<Child>(clientArgs(tmp.path() / ("c" + std::to_string(i)), dom, {"--layers", "grid"}),
-                                tmp.path() / ("client" + std::to_string(i))));
-  // Kill one as soon as it has joined the domain (it is receiving the 6.8 MB grid then).
-  std::this_thread::sleep_for(std::chrono::milliseconds(150));
-  clients[0]->signal(SIGKILL);
-  EXPECT_EQ(clients[0]->wait(5), 128 + SIGKILL);
+  const std::vector<std::string> grid_only{"--layers", "grid"};
+  // One client is killed while it receives the grid, one is frozen (SIGSTOP: a reliable reader
+  // that stops acknowledging) for the rest of the test.
+  Child killed(clientArgs(tmp.path() / "killed", dom, grid_only), tmp.path() / "killed");
+  Child frozen(
+      clientArgs(tmp.path() / "frozen", dom, {"--layers", "grid", "--expect-grid-sha256", "none"}, "60"),
+      tmp.path() / "frozen");
+  ASSERT_TRUE(killed.waitForLog("waiting for the map", 15)) << killed.err();
+  ASSERT_TRUE(frozen.waitForLog("waiting for the map", 15)) << frozen.err();
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  killed.signal(SIGKILL);
+  frozen.signal(SIGSTOP);
+  EXPECT_EQ(killed.wait(5), 128 + SIGKILL);
+
   const std::string sha = expectedGridSha(map_dir, 0.05);
-  for (int i = 1; i < 3; ++i) {
+  std::vector<std::unique_ptr<Child>> clients;
+  for (int i = 0; i < 2; ++i)
+    clients.push_back(
+        std::make_unique<Child>(clientArgs(tmp.path() / ("c" + std::to_string(i)), dom, grid_only),
+                                tmp.path() / ("client" + std::to_string(i))));
+  for (int i = 0; i < 2; ++i) {
     ASSERT_EQ(clients[i]->wait(20), 0) << clients[i]->err();
     EXPECT_EQ(
         yamlValue(test::readText(tmp.path() / ("c" + std::to_string(i)) / "map_info.yaml"), "grid_sha256"),
         sha);
   }
-  // And a newcomer after the kill still gets it.
-  Child after(clientArgs(tmp.path() / "after", dom, {"--layers", "grid"}), tmp.path() / "after");
+  // A reload still goes out with the frozen reader around, and newcomers get it.
+  saveMap(test::syntheticMap(3, 1000, 60.0, 16), map_dir);
+  const std::string sha2 = expectedGridSha(map_dir, 0.05);
+  EXPECT_TRUE(server.waitForLog("revision 2", 20)) << server.err();
+  Child after(clientArgs(tmp.path() / "after", dom, {"--layers", "grid", "--expect-grid-sha256", sha2}),
+              tmp.path() / "after");
   ASSERT_EQ(after.wait(20), 0) << after.err();
   EXPECT_TRUE(server.running());
+  frozen.signal(SIGKILL);
 }
 
 // One line on stderr, naming the problem, and a non-zero exit.
@@ -260,7 +276,7 @@ TEST(MapServer, BadInputGivesOneLineErrors) {
     expectOneLineError(c, 1, "out");
   }
   {  // no server on this domain: the client times out with status 2
-    Child c(clientArgs(tmp.path() / "x", dom, {}, "0.5"), tmp.path() / "timeout");
+    Child c(clientArgs(tmp.path() / "x", dom, {"--verbosity", "WARN"}, "0.5"), tmp.path() / "timeout");
     expectOneLineError(c, 2, "timed out");
     EXPECT_FALSE(fs::exists(tmp.path() / "x" / "map_info.yaml"));
   }
