@@ -1,8 +1,8 @@
 #pragma once
 // Helpers for the DDS tests: child processes with captured output, per-test DDS domain ids,
 // synthetic maps built with addKeyframe.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
