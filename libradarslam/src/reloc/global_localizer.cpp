@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "radarslam/core/errors.h"
+#include "radarslam/core/log.h"
 #include "radarslam/core/yaml_params.h"
 
 namespace radarslam {
@@ -88,6 +89,11 @@ GlobalFix GlobalLocalizer::localize(std::span<const RadarPoint> cloud) const {
       const auto& cand = retrieved[r];
       const LoopVerification v = verifyLoop(cloud, clouds_[cand.keyframe], params_.verifier);
       ++best.verified;
+      logger().logFmt(mrpt::system::LVL_DEBUG,
+                      "global: keyframe %zu distance %.3f: %s, inliers %zu ratio %.2f ambiguity %.2f",
+                      cand.keyframe, static_cast<double>(cand.distance),
+                      v.accepted ? "accepted" : v.reason.c_str(), v.inliers, v.inlier_ratio,
+                      v.ambiguity_ratio);
       if (!v.accepted) continue;
       if (!best.found || v.inliers > best.verification.inliers) {
         best.found = true;

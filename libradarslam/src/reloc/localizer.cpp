@@ -5,12 +5,15 @@
 #include <mrpt/poses/CPose2D.h>
 
 #include <chrono>
+#include <cmath>
 #include <future>
+#include <optional>
 
 #include "radarslam/core/errors.h"
 #include "radarslam/core/yaml_params.h"
 #include "radarslam/frontend/odometry.h"
 #include "radarslam/radar/motion_compensation.h"
+#include "radarslam/reloc/map_motion.h"
 
 namespace radarslam {
 
@@ -18,9 +21,15 @@ void loadParams(const YamlParams& yaml, LocalizerParams& p) {
   yaml.get("motion_compensation", p.motion_compensation);
   yaml.get("max_missed_scans", p.max_missed_scans);
   yaml.get("global_retry_interval", p.global_retry_interval);
-  if (p.max_missed_scans < 0 || p.global_retry_interval < 1)
+  yaml.get("map_sweep_period_s", p.map_sweep_period_s);
+  yaml.get("confirm_fixes", p.confirm_fixes);
+  yaml.get("confirm_distance_m", p.confirm_distance_m);
+  yaml.get("confirm_angle_deg", p.confirm_angle_deg);
+  if (p.max_missed_scans < 0 || p.global_retry_interval < 1 || !(p.map_sweep_period_s >= 0) ||
+      p.confirm_fixes < 1 || !(p.confirm_distance_m > 0) || !(p.confirm_angle_deg > 0))
     throw InputError(yaml.origin(),
-                     "localization: max_missed_scans must be >= 0, global_retry_interval >= 1");
+                     "localization: max_missed_scans must be >= 0, global_retry_interval >= 1, "
+                     "map_sweep_period_s >= 0, confirm_fixes >= 1, confirm distances > 0");
   loadParams(yaml.section("peak_cloud"), p.peaks);
   loadParams(yaml.section("global"), p.global);
   loadParams(yaml.section("tracker"), p.tracker);
@@ -49,6 +58,8 @@ mrpt::math::TPose2D compose(const mrpt::math::TPose2D& a, const mrpt::math::TPos
 }  // namespace
 
 struct Localizer::Impl {
+  KeyframeMap compensated;  ///< only with map_sweep_period_s > 0
+  const KeyframeMap& map;
   LocalizerParams params;
   RadarOdometry odometry;
   GlobalLocalizer global;
@@ -58,8 +69,16 @@ struct Localizer::Impl {
   int missed = 0;       ///< rejected registrations in a row
   long lost_scans = 0;  ///< scans since global localisation became necessary
   std::size_t fixes = 0;
-  Impl(const KeyframeMap& map, const OdometryParams& op, const LocalizerParams& p)
-      : params(p), odometry(op), global(map, p.global), tracker(map, p.tracker) {}
+  std::optional<mrpt::math::TPose2D> pending;  ///< last unconfirmed fix, moved with the odometry
+  int pending_count = 0;                       ///< consecutive agreeing fixes so far
+  Impl(const KeyframeMap& map_in, const OdometryParams& op, const LocalizerParams& p)
+      : compensated(p.map_sweep_period_s > 0 ? compensateMapMotion(map_in, p.map_sweep_period_s)
+                                             : KeyframeMap{}),
+        map(p.map_sweep_period_s > 0 ? compensated : map_in),
+        params(p),
+        odometry(op),
+        global(map, p.global),
+        tracker(map, p.tracker) {}
 };
 
 Localizer::Localizer(const KeyframeMap& map, const OdometryParams& odometry, const LocalizerParams& params)
@@ -118,15 +137,31 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     return res;
   }
 
+  if (m.pending) m.pending = compose(*m.pending, step.motion);
   if (m.lost_scans++ % m.params.global_retry_interval != 0) return res;
   t0 = Clock::now();
   const GlobalFix fix = m.global.localize(cloud);
+  std::optional<TrackResult> refined;
   if (fix.found) {
-    // Confirm and refine the fix against the local submap (same tests as tracking).
-    const TrackResult tr = m.tracker.track(cloud, fix.pose);
-    if (tr.accepted) {
-      accept(tr, LocalizationStatus::GlobalFix);
+    // Refine and check the fix against the local submap (same tests as tracking).
+    TrackResult tr = m.tracker.track(cloud, fix.pose);
+    if (tr.accepted) refined = std::move(tr);
+  }
+  if (!refined) {
+    m.pending.reset();
+    m.pending_count = 0;
+  } else {
+    const auto& p = refined->icp.pose;
+    const bool agrees =
+        m.pending && std::hypot(p.x - m.pending->x, p.y - m.pending->y) <= m.params.confirm_distance_m &&
+        std::abs(std::remainder(p.phi - m.pending->phi, 2 * M_PI)) * 180 / M_PI <= m.params.confirm_angle_deg;
+    m.pending_count = agrees ? m.pending_count + 1 : 1;
+    m.pending = p;
+    if (m.pending_count >= m.params.confirm_fixes) {
+      accept(*refined, LocalizationStatus::GlobalFix);
       ++m.fixes;
+      m.pending.reset();
+      m.pending_count = 0;
     }
   }
   res.timing.global = msSince(t0);

@@ -5,7 +5,8 @@
 //   scan -> RadarOdometry (frontend/odometry.h: T_prev_cur, body velocity) -> Algorithm-1 peak
 //   cloud, motion compensated with the odometry velocity ->
 //     not localised: GlobalLocalizer (M2DP retrieval over all keyframes + verification), the fix
-//                    confirmed by a MapTracker registration from it -> GlobalFix
+//                    refined and checked by a MapTracker registration from it, reported once
+//                    confirm_fixes consecutive fixes agree through the odometry -> GlobalFix
 //     localised:     MapTracker registration from last pose (+) T_prev_cur -> Tracking
 //   A rejected registration reports the scan as not localised (Lost) and keeps dead reckoning with
 //   odometry for up to max_missed_scans scans, still trying to register from the prediction; after
@@ -33,10 +34,20 @@ struct LocalizerParams {
   MapTrackerParams tracker;
   int max_missed_scans = 3;       ///< rejected registrations in a row before global search again
   int global_retry_interval = 1;  ///< while lost, try global localisation every N scans
+  /// > 0: the map's keyframe clouds are raw (not motion compensated, e.g. map-synth maps) and are
+  /// compensated at start-up assuming this sweep period (reloc/map_motion.h). 0: used as stored.
+  double map_sweep_period_s = 0;
+  /// A global fix is reported only when this many consecutive scans gave fixes that agree through
+  /// the odometry (perceptual aliasing: similar streets verify now and then; measured in
+  /// docs/localization.md). 1 = report the first fix.
+  int confirm_fixes = 2;
+  double confirm_distance_m = 2.0;  ///< agreement of consecutive fixes
+  double confirm_angle_deg = 5.0;
 };
 
 /// Overrides from the `localization:` section of `yaml`: motion_compensation, max_missed_scans,
-/// global_retry_interval and the sections peak_cloud:, global:, tracker:.
+/// global_retry_interval, map_sweep_period_s, confirm_fixes, confirm_distance_m, confirm_angle_deg
+/// and the sections peak_cloud:, global:, tracker:.
 void loadParams(const YamlParams& yaml, LocalizerParams& params);
 
 enum class LocalizationStatus { GlobalFix, Tracking, Lost };
@@ -62,7 +73,8 @@ struct LocalizationResult {
 
 class Localizer {
  public:
-  /// Keeps a reference to `map` (must outlive this).
+  /// Keeps a reference to `map` (must outlive this) unless map_sweep_period_s > 0 (then a
+  /// compensated copy).
   Localizer(const KeyframeMap& map, const OdometryParams& odometry, const LocalizerParams& params = {});
   ~Localizer();
   Localizer(const Localizer&) = delete;
