@@ -166,6 +166,12 @@ int runOdometry(int argc, char** argv) {
   std::printf(
       "  scans          %zu tracked, %zu lost (constant-velocity prediction), %zu skipped, %zu keyframes\n",
       done - lost, lost, scans.skipped(), keyframes);
+  const ScanIteratorStats& input = scans.stats();
+  std::printf(
+      "  input          %zu duplicate scans skipped, %zu unreadable skipped, %zu blank scans, %zu time gaps "
+      "(> 1.5x the %.3f s scan period, largest %.3f s)\n",
+      input.skipped_duplicate, input.skipped_unreadable, input.blank, input.time_gaps,
+      toSeconds(input.scan_period_ns), toSeconds(input.largest_gap_ns));
   std::printf("  path length    %.1f m in %.1f s of data\n", pathLength(traj),
               toSeconds(traj.back().stamp - traj.front().stamp));
   std::printf(

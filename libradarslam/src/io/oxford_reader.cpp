@@ -14,7 +14,8 @@ namespace radarslam::io_detail {
 
 namespace {
 
-// radar.timestamps: "<t_us> <flag>" per line, strictly increasing.
+// radar.timestamps: "<t_us> <flag>" per line, increasing. A line repeating the previous stamp (a
+// duplicated scan) is kept: ScanIterator skips the duplicate with a warning and counts it.
 std::vector<IndexEntry> readRadarTimestamps(const std::filesystem::path& root) {
   const auto file = root / "radar.timestamps";
   std::error_code ec;
@@ -35,7 +36,7 @@ std::vector<IndexEntry> readRadarTimestamps(const std::filesystem::path& root) {
     IndexEntry e;
     e.stamp = parseMicroseconds(fields[0], where, "timestamp");
     e.file = root / "radar" / (std::string(fields[0]) + ".png");
-    if (!index.empty() && e.stamp <= index.back().stamp)
+    if (!index.empty() && e.stamp < index.back().stamp)
       throw InputError(where, "timestamps are not increasing (" + std::string(fields[0]) + " after " +
                                   std::to_string(index.back().stamp / kNsPerUs) + ")");
     index.push_back(std::move(e));

@@ -72,9 +72,22 @@ std::unique_ptr<DatasetReader> openDataset(const std::filesystem::path& path,
 CObservationRadarScan::Ptr readScanFile(const std::filesystem::path& scan_file,
                                         const ReaderOptions& options = {});
 
+/// What a ScanIterator skipped or flagged so far (for the commands' final summaries).
+struct ScanIteratorStats {
+  std::size_t skipped_unreadable = 0;  ///< bad scans skipped with skip_bad_scans
+  std::size_t skipped_duplicate = 0;   ///< same reference time as the previous scan: always skipped
+  std::size_t blank = 0;               ///< returned scans without any return (all-zero power), e.g. snow
+  std::size_t time_gaps = 0;           ///< intervals > 1.5x the scan period (dropped scans, time jumps)
+  StampNs largest_gap_ns = 0;          ///< largest interval between returned scans
+  StampNs scan_period_ns = 0;          ///< median interval of the dataset's index (0: unknown)
+};
+
 /// Iterates a dataset in time order. Every scan is checked (decodes, consistent geometry, its
 /// reference time later than the previous scan's). With skip_bad_scans a bad scan is logged as a
-/// warning and skipped; without it the InputError naming the file propagates.
+/// warning and skipped; without it the InputError naming the file propagates. A scan with the
+/// same reference time as the previous one (a duplicated index entry) is always skipped with a
+/// warning; an earlier one is a bad scan. Blank scans and time gaps are passed on, but counted
+/// (stats()) and logged.
 class ScanIterator {
  public:
   ScanIterator(const DatasetReader& reader, bool skip_bad_scans, std::size_t first = 0,
@@ -83,8 +96,9 @@ class ScanIterator {
   CObservationRadarScan::Ptr next();
   /// Dataset index of the scan last returned by next().
   std::size_t index() const { return last_; }
-  std::size_t skipped() const { return skipped_; }
+  std::size_t skipped() const { return skipped_; }      ///< unreadable + duplicate scans skipped
   std::size_t total() const { return end_ - first_; }  ///< scans this iterator will visit
+  const ScanIteratorStats& stats() const { return stats_; }
 
  private:
   const DatasetReader& reader_;
@@ -92,6 +106,7 @@ class ScanIterator {
   std::size_t first_, end_, pos_, last_ = 0, skipped_ = 0;
   StampNs last_stamp_ = 0;
   bool have_last_stamp_ = false;
+  ScanIteratorStats stats_;
 };
 
 }  // namespace radarslam
