@@ -1,7 +1,14 @@
-// Fuzz target: YAML configs. YamlParams::fromText (MRPT's YAML parser) then the radar module's
-// loadParams for the `cartesian:` and `peak_cloud:` sections, every get() type, unknown keys.
+// Fuzz target: YAML configs. YamlParams::fromText (MRPT's YAML parser) then every module's
+// loadParams: the whole odometry config (OdometryParams: `cartesian:` + `odometry:`, as
+// `radarslam odometry --config` reads it), `peak_cloud:`, the loop closure (`m2dp:`,
+// `loop_detector:`, `loop_verifier:`) and back end (`pose_graph:`), every get() type, unknown keys.
 #include "fuzz_common.h"
+#include "radarslam/backend/pose_graph.h"
 #include "radarslam/core/yaml_params.h"
+#include "radarslam/frontend/odometry_params.h"
+#include "radarslam/loop/loop_detector.h"
+#include "radarslam/loop/loop_verifier.h"
+#include "radarslam/loop/m2dp.h"
 #include "radarslam/radar/cartesian.h"
 #include "radarslam/radar/peak_cloud.h"
 
@@ -14,10 +21,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   radarslam::fuzz::expectOnlyInputError([&] {
     const auto yaml = radarslam::YamlParams::fromText(text, "fuzz.yaml");
-    radarslam::CartesianParams cartesian;
-    radarslam::loadParams(yaml.section("cartesian"), cartesian);
+    radarslam::OdometryParams odometry;
+    radarslam::loadParams(yaml, odometry);
     radarslam::PeakCloudParams peaks;
     radarslam::loadParams(yaml.section("peak_cloud"), peaks);
+    radarslam::M2DPParams m2dp;
+    radarslam::loadParams(yaml.section("m2dp"), m2dp);
+    radarslam::LoopDetectorParams detector;
+    radarslam::loadParams(yaml.section("loop_detector"), detector);
+    radarslam::LoopVerifierParams verifier;
+    radarslam::loadParams(yaml.section("loop_verifier"), verifier);
+    radarslam::PoseGraphParams graph;
+    radarslam::loadParams(yaml.section("pose_graph"), graph);
     const auto other = yaml.section("other");
     double d = 0;
     float f = 0;

@@ -78,3 +78,45 @@ put("trajectory_files", "times.txt", "0.000000e+00\n2.500000e-01\n")
 put("yaml_params", "config.yaml",
     "cartesian:\n  size_px: 701\n  m_per_px: 0.25\n  fixed_point_maps: true\n"
     "peak_cloud:\n  min_peak_prominence: 30\n  min_range_m: 2.5\n  smoothing_bins: 0\n")
+
+
+def map_seed():
+    """A tiny map directory (maps/README.md) joined as fuzz_map_load.cpp expects: manifest.yaml,
+    parameters.yaml, keyframes.bin, points.bin, graph.bin separated by SEP."""
+    import hashlib
+    sep = b"\n=RSLM-PART=\n"
+
+    def header(magic, count):
+        return magic + struct.pack("<IIQ", 1, 0, count)
+
+    params = b"odometry:\n  tracking:\n    min_inliers: 10\n"
+    kf = header(b"RSLMKEYF", 2)
+    for i in range(2):
+        pts = b"".join(struct.pack("<fff", 1.5 * p + i, -2.0 * p, 40.0 + p) for p in range(3))
+        desc = struct.pack("<4f", 0.1, 0.2, 0.3, 0.4) if i == 0 else b""
+        kf += struct.pack("<QqdddII", i, 1547120788016733000 + i * 250000000, 2.0 * i, 0.1 * i, 0.01 * i,
+                          3, len(desc) // 4) + pts + desc
+    points = header(b"RSLMPNTS", 2)
+    points += struct.pack("<QddI", 0, 1.0, 2.0, 2) + struct.pack("<QQ", 0, 1)
+    points += struct.pack("<QddI", 1, -3.0, 4.5, 1) + struct.pack("<Q", 1)
+    graph = header(b"RSLMGRPH", 1)
+    graph += struct.pack("<QQddd", 0, 1, 2.0, 0.1, 0.01) + struct.pack("<9d", 100, 0, 0, 0, 100, 0, 0, 0, 1000)
+    graph += struct.pack("<I", 0)
+    files = [("parameters", "parameters.yaml", params), ("keyframes", "keyframes.bin", kf),
+             ("points", "points.bin", points), ("graph", "graph.bin", graph)]
+    manifest = ("# radarslam map manifest (format: maps/README.md)\nformat_version: 1\n"
+                "created_ns: 1700000000000000000\ncreated_utc: \"2023-11-14T22:13:20Z\"\n"
+                "software_version: \"0.1.0\"\nsource_dataset: \"fuzz\"\nsensor:\n  num_azimuths: 400\n"
+                "  num_bins: 3768\n  range_resolution_m: 0.0438\n  range_offset_m: 0.0219\n"
+                "counts:\n  keyframes: 2\n  points: 2\n  edges: 1\nfiles:\n")
+    for key, name, data in files:
+        manifest += "  %s:\n    name: \"%s\"\n    bytes: %d\n    sha256: \"%s\"\n" % (
+            key, name, len(data), hashlib.sha256(data).hexdigest())
+    return sep.join([manifest.encode()] + [f[2] for f in files])
+
+
+put("map_load", "tiny_map.bin", map_seed())
+put("yaml_params", "modules.yaml",
+    "odometry:\n  matching:\n    radius_m: 5\n  tracking:\n    min_inliers: 10\n"
+    "m2dp:\n  rings: 8\nloop_detector:\n  max_candidates: 5\nloop_verifier:\n  min_inliers: 20\n"
+    "pose_graph:\n  max_iterations: 50\n")
