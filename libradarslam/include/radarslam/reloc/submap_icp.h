@@ -43,7 +43,7 @@ struct IcpParams {
   double scan_voxel_m = 1.0;           ///< query cloud thinning (strongest point per voxel)
   std::size_t max_scan_points = 1000;  ///< after thinning (even stride)
   double min_sigma_m = 0.05;
-  double covariance_scale = 150.0;  ///< calibrated on the simulator demo (docs/localization.md)
+  double covariance_scale = 50.0;  ///< calibrated on the simulator demo (docs/localization.md)
 };
 
 void loadParams(const YamlParams& yaml, SubmapParams& params);
