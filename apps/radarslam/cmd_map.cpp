@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -83,6 +84,12 @@ int runMap(int argc, char** argv) {
                                        cmd.tclap());
   TCLAP::ValueArg<double> grid_res_arg("", "grid-resolution", "Preview grid cell size, m (default 0.5)", false,
                                        0.5, "M", cmd.tclap());
+  TCLAP::ValueArg<std::string> extend_arg(
+      "", "extend",
+      "Extend this map (name in maps/ or a path) with the new session: it is relocalised in the map by its "
+      "first verified loop and merged into one pose graph; the result (both sessions) is written to -o, "
+      "which may be the same map",
+      false, "", "MAP", cmd.tclap());
   TCLAP::SwitchArg quiet_arg("q", "quiet", "No progress line", cmd.tclap());
   cmd.parse(argc, argv);
 
@@ -123,6 +130,13 @@ int runMap(int argc, char** argv) {
             << "\n";
 
   RadarSlam slam(params);
+  std::optional<KeyframeMap> base;
+  if (extend_arg.isSet()) {
+    const fs::path base_dir = resolveMapPath(extend_arg.getValue());
+    base = loadMap(base_dir);
+    std::cerr << "map: extending " << base_dir.string() << " (" << base->keyframes.size() << " keyframes)\n";
+    slam.extend(*base);
+  }
   ScanIterator scans(*reader, skip_arg.getValue(), first, end);
   const auto t0 = Clock::now();
   auto last_print = t0;
@@ -149,12 +163,17 @@ int runMap(int argc, char** argv) {
   if (!quiet_arg.getValue() && tty) std::fprintf(stderr, "\n");
   if (done == 0) throw InputError(dir.string(), "no scan could be read");
   const double track_s = std::chrono::duration<double>(Clock::now() - t0).count();
-  slam.finish();
+  try {
+    slam.finish();
+  } catch (const std::runtime_error& e) {
+    throw InputError(extend_arg.getValue(), std::string("could not extend: ") + e.what());
+  }
   const double elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
 
   KeyframeMap map = slam.map();
   map.meta.parameters_yaml = config_text;
   map.meta.source_dataset = fs::absolute(dir).lexically_normal().string();
+  if (base) map.meta.source_dataset = base->meta.source_dataset + ";" + map.meta.source_dataset;
   map.meta.software_version = RADARSLAM_VERSION;
   const auto ts = Clock::now();
   saveMap(map, map_dir);

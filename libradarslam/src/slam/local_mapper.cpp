@@ -28,8 +28,9 @@ void LocalMapper::insert(const KeyframeJob& job) {
   {
     std::lock_guard lock(state_.mutex);
     if (job.id != state_.keyframes.size()) throw std::logic_error("local mapping: keyframes out of order");
-    if (job.id == 0) {
+    if (job.id == state_.session_first) {
       kf.pose = job.odom_pose;
+      kf.session_start = job.id > 0;
     } else {
       const SlamKeyframe& prev = state_.keyframes.back();
       kf.odom_edge = between(prev.odom_pose, job.odom_pose);
@@ -40,14 +41,16 @@ void LocalMapper::insert(const KeyframeJob& job) {
     const int window = params_.local_mapping.window_keyframes;
     if (job.id >= static_cast<std::uint64_t>(window)) retire(job.id - window);
   }
-  if (params_.local_mapping.bundle_adjustment && job.id > 0) bundleAdjust(job.id);
+  if (params_.local_mapping.bundle_adjustment && job.id > state_.session_first &&
+      (job.id - state_.session_first) % params_.local_mapping.interval_keyframes == 0)
+    bundleAdjust(job.id);
   std::lock_guard lock(state_.mutex);
   state_.stats.local_mapping_ms +=
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void LocalMapper::associate(SlamKeyframe& kf, const KeyframeJob& job) {
-  if (job.id == 0 || job.lost) return;
+  if (job.id == state_.session_first || job.lost) return;
   SlamKeyframe& prev = state_.keyframes.back();
   for (const auto& [pi, ci] : job.links) {
     if (pi < 0 || ci < 0 || static_cast<std::size_t>(pi) >= prev.keypoints.size() ||
@@ -92,9 +95,9 @@ void LocalMapper::bundleAdjust(std::uint64_t newest) {
   std::vector<std::uint64_t> pose_ids;
   std::vector<std::size_t> point_ids;
   std::uint64_t corrections = 0;
-  const std::uint64_t first = newest + 1 > static_cast<std::uint64_t>(lp.window_keyframes)
-                                  ? newest + 1 - lp.window_keyframes
-                                  : 0;
+  const std::uint64_t first = std::max<std::uint64_t>(
+      state_.session_first,
+      newest + 1 > static_cast<std::uint64_t>(lp.window_keyframes) ? newest + 1 - lp.window_keyframes : 0);
   {
     std::lock_guard lock(state_.mutex);
     corrections = state_.corrections;

@@ -9,28 +9,57 @@
 
 namespace radarslam::slam_detail {
 
+void LoopCloser::addMapKeyframe(std::uint64_t id) {
+  if (!map_detector_) {
+    LoopDetectorParams p = params_.loop_closing.detector;
+    p.exclude_recent = 0;
+    p.exclude_recent_distance_m = 0;
+    map_detector_ = std::make_unique<LoopDetector>(p);
+  }
+  const SlamKeyframe& kf = state_.keyframes.at(id);
+  map_detector_->add(kf.descriptor, kf.travelled_m);
+  detector_.add(kf.descriptor, kf.travelled_m);
+}
+
+void LoopCloser::anchorSession(const TPose2D& implied, std::uint64_t query) {
+  const TPose2D& q = state_.keyframes[query].pose;
+  const TPose2D correction = compose(implied, between(q, TPose2D(0, 0, 0)));  // implied (+) q^-1
+  for (std::size_t i = state_.session_first; i < state_.keyframes.size(); ++i)
+    state_.keyframes[i].pose = compose(correction, state_.keyframes[i].pose);
+  for (auto& mp : state_.points)
+    if (mp.reference >= state_.session_first) mp.xy = transformPoint(correction, mp.xy);
+  state_.anchored = true;
+  state_.anchor_travelled_m = state_.keyframes[query].travelled_m;
+  ++state_.corrections;
+  logger().logFmt(mrpt::system::LVL_INFO, "slam: new session anchored to the map at keyframe %llu",
+                  static_cast<unsigned long long>(query));
+}
+
 void LoopCloser::process(std::uint64_t id) {
   const auto t0 = std::chrono::steady_clock::now();
   std::shared_ptr<const std::vector<RadarPoint>> cloud;
   std::vector<M2DPDescriptor> descriptors;
   double travelled = 0;
+  bool anchored = true;
   {
     std::lock_guard lock(state_.mutex);
+    anchored = state_.anchored;
     const SlamKeyframe& kf = state_.keyframes.at(id);
     cloud = kf.cloud;
     descriptors = {kf.descriptor, kf.descriptor_flipped};
     travelled = kf.travelled_m;
   }
   const auto& lc = params_.loop_closing;
-  const bool gate = lc.drift_fraction > 0;
+  const bool gate = lc.drift_fraction > 0 && anchored;
   // The drift bound between keyframe `m` and the query (see LoopClosingParams).
   auto driftBound = [&](std::uint64_t m) {
-    const double d = travelled - state_.keyframes[m].travelled_m;
+    // To a keyframe of a loaded map: the new session has drifted since it was anchored.
+    const double d = travelled - (m < state_.session_first ? state_.anchor_travelled_m : state_.keyframes[m].travelled_m);
     return std::pair(lc.drift_base_m + lc.drift_fraction * d, (lc.drift_base_deg + lc.drift_deg_per_m * d) * M_PI / 180);
   };
-  bool optimise = false;
-  if (params_.loop_closing.enabled && descriptors[0].size() > 0) {
-    auto candidates = detector_.query(descriptors, travelled);
+  bool optimise = false, closed = false;
+  if ((params_.loop_closing.enabled || !anchored) && descriptors[0].size() > 0) {
+    auto candidates = anchored ? detector_.query(descriptors, travelled) : map_detector_->query(descriptors, travelled);
     if (gate) {
       std::lock_guard lock(state_.mutex);
       const TPose2D& q = state_.keyframes[id].pose;
@@ -39,7 +68,8 @@ void LoopCloser::process(std::uint64_t id) {
         return std::hypot(q.x - m.x, q.y - m.y) > lc.verifier.max_translation_m + driftBound(c.keyframe).first;
       });
     }
-    const std::size_t n = std::min<std::size_t>(candidates.size(), lc.max_verifications);
+    const std::size_t n = std::min<std::size_t>(
+        candidates.size(), previous_closed_loop_ ? lc.max_verifications_after_loop : lc.max_verifications);
     for (std::size_t c = 0; c < n; ++c) {
       std::shared_ptr<const std::vector<RadarPoint>> match_cloud;
       {
@@ -76,14 +106,21 @@ void LoopCloser::process(std::uint64_t id) {
         continue;
       }
       ++state_.stats.loops_accepted;
+      if (!state_.anchored) anchorSession(implied, id);
       AcceptedLoop loop{rec.match, id, v.relative_pose, v.information, state_.records.size() - 1, true};
+      if (lc.loop_sigma_xy_m > 0 && lc.loop_sigma_phi_deg > 0) {
+        const double sxy = lc.loop_sigma_xy_m, sphi = lc.loop_sigma_phi_deg * M_PI / 180;
+        loop.information = Eigen::Vector3d(1 / (sxy * sxy), 1 / (sxy * sxy), 1 / (sphi * sphi)).asDiagonal();
+      }
       optimise |= dm > lc.optimise_min_correction_m || da > lc.optimise_min_correction_deg * M_PI / 180;
       logger().logFmt(mrpt::system::LVL_DEBUG, "slam: loop %llu -> %llu accepted (inliers %.2f, correction %.2f m)",
                       static_cast<unsigned long long>(loop.from), static_cast<unsigned long long>(loop.to),
                       v.inlier_ratio, dm);
       state_.loops.push_back(loop);
+      closed = true;
     }
   }
+  previous_closed_loop_ = closed;
   detector_.add(descriptors[0], travelled);
   if (optimise) optimiseAndCorrect(state_, params_);
   std::lock_guard lock(state_.mutex);

@@ -15,11 +15,19 @@ class LoopCloser {
   /// Searches loops for keyframe `id` (after local mapping inserted it), then adds it to the
   /// database. Keyframes must arrive in id order.
   void process(std::uint64_t id);
+  /// Extending a map: adds keyframe `id` of the loaded map to the database (call in id order,
+  /// before the first process()). Until the new session is anchored, its keyframes are matched
+  /// against these only, without recency exclusion and without the drift gate.
+  void addMapKeyframe(std::uint64_t id);
 
  private:
+  /// Moves the whole new session by the correction a verified loop to the map implies.
+  void anchorSession(const TPose2D& implied_query_pose, std::uint64_t query);
   SlamState& state_;
   const SlamParams& params_;
   LoopDetector detector_;
+  std::unique_ptr<LoopDetector> map_detector_;
+  bool previous_closed_loop_ = false;  ///< the loaded map's keyframes (extending only)
 };
 
 }  // namespace radarslam::slam_detail

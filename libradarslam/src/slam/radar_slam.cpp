@@ -1,6 +1,8 @@
 #include "radarslam/slam/radar_slam.h"
 
 #include <chrono>
+#include <map>
+#include <stdexcept>
 #include <thread>
 
 #include "graph_optimiser.h"
@@ -72,10 +74,74 @@ struct RadarSlam::Impl {
     return compose(kf.pose, between(kf.odom_pose, a.odom_pose));
   }
 
+  void extend(const KeyframeMap& base) {
+    if (!anchors.empty() || !state.keyframes.empty()) throw std::logic_error("RadarSlam::extend after process()");
+    if (base.keyframes.empty()) throw std::invalid_argument("RadarSlam::extend: the map has no keyframe");
+    std::map<std::uint64_t, std::uint64_t> index;  // map keyframe id -> state index
+    double travelled_m = 0;
+    for (const auto& k : base.keyframes) {
+      SlamKeyframe kf;
+      kf.id = state.keyframes.size();
+      index[k.id] = kf.id;
+      kf.stamp = k.stamp_ns;
+      kf.pose = kf.odom_pose = k.pose;
+      kf.session_start = kf.id == 0;
+      if (kf.id > 0) {
+        const TPose2D& prev = state.keyframes.back().pose;
+        kf.odom_edge = between(prev, k.pose);
+        travelled_m += std::hypot(kf.odom_edge.x, kf.odom_edge.y);
+      }
+      kf.travelled_m = travelled_m;
+      auto cloud = std::make_shared<std::vector<RadarPoint>>();
+      cloud->reserve(k.points.size());
+      for (const auto& p : k.points)
+        cloud->push_back({p.x, p.y, std::hypot(p.x, p.y), p.power, 0});
+      kf.descriptor = k.descriptor.empty() ? computeM2DP(*cloud, params.loop_closing.m2dp)
+                                           : Eigen::Map<const Eigen::VectorXf>(k.descriptor.data(),
+                                                                                static_cast<long>(k.descriptor.size()));
+      kf.descriptor_flipped = computeM2DP(*cloud, params.loop_closing.m2dp, true);
+      kf.cloud = std::move(cloud);
+      state.keyframes.push_back(std::move(kf));
+      closer.addMapKeyframe(state.keyframes.back().id);
+    }
+    // The map's own measurements: odometry edges replace the pose differences, loops stay loops.
+    for (const auto& e : base.edges) {
+      if (!index.count(e.from) || !index.count(e.to)) continue;
+      const std::uint64_t from = index[e.from], to = index[e.to];
+      if (e.kind == EdgeKind::Odometry && to == from + 1) {
+        state.keyframes[to].odom_edge = e.relative;
+      } else {
+        AcceptedLoop loop;
+        loop.from = from;
+        loop.to = to;
+        loop.relative = e.relative;
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) loop.information(r, c) = e.information[3 * r + c];
+        state.loops.push_back(loop);
+      }
+    }
+    for (const auto& p : base.points) {
+      SlamMapPoint mp;
+      mp.xy = {p.x, p.y};
+      for (const auto id : p.observed_by) {
+        if (!index.count(id)) continue;
+        const std::uint64_t k = index[id];
+        mp.observations.push_back({k, inverseTransformPoint(state.keyframes[k].pose, mp.xy)});
+      }
+      if (mp.observations.empty()) continue;
+      mp.reference = mp.observations.front().keyframe;
+      state.points.push_back(std::move(mp));
+    }
+    state.session_first = next_keyframe = state.keyframes.size();
+    state.anchored = false;
+    travelled = travelled_m + 1e6;  // map keyframes are never "recent" for the loop detector
+    sensor = base.meta.sensor;
+  }
+
   SlamStep process(const CObservationRadarScan& scan) {
     if (finished) throw std::logic_error("RadarSlam::process after finish()");
     const auto t0 = std::chrono::steady_clock::now();
-    if (anchors.empty())
+    if (anchors.empty() && state.session_first == 0)
       sensor = {static_cast<std::uint32_t>(scan.num_azimuths), static_cast<std::uint32_t>(scan.num_bins),
                 scan.range_resolution_m, scan.range_offset_m};
     SlamStep step;
@@ -120,6 +186,8 @@ struct RadarSlam::Impl {
       std::lock_guard lock(state.mutex);
       for (const auto& l : state.loops) any_loop |= l.active;
     }
+    if (!state.anchored)
+      throw std::runtime_error("the new session found no verified loop to the map (no place in common?)");
     if (any_loop) optimiseAndCorrect(state, params);
   }
 
@@ -137,7 +205,7 @@ struct RadarSlam::Impl {
       for (const auto& p : *kf.cloud) k.points.push_back({p.x, p.y, p.power});
       k.descriptor.assign(kf.descriptor.data(), kf.descriptor.data() + kf.descriptor.size());
       m.keyframes.push_back(std::move(k));
-      if (kf.id == 0) continue;
+      if (kf.session_start || kf.id == 0) continue;
       PoseGraphEdge e;
       e.from = kf.id - 1;
       e.to = kf.id;
@@ -177,6 +245,7 @@ RadarSlam::RadarSlam(const SlamParams& params) : impl_(std::make_unique<Impl>(pa
 RadarSlam::~RadarSlam() = default;
 SlamStep RadarSlam::process(const CObservationRadarScan& scan) { return impl_->process(scan); }
 void RadarSlam::finish() { impl_->finish(); }
+void RadarSlam::extend(const KeyframeMap& base) { impl_->extend(base); }
 
 Trajectory RadarSlam::trajectory() const {
   std::lock_guard lock(impl_->state.mutex);

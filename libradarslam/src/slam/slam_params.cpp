@@ -13,6 +13,7 @@ void loadParams(const YamlParams& yaml, SlamParams& p) {
   const YamlParams lm = slam.section("local_mapping");
   lm.get("bundle_adjustment", p.local_mapping.bundle_adjustment);
   lm.get("window_keyframes", p.local_mapping.window_keyframes);
+  lm.get("interval_keyframes", p.local_mapping.interval_keyframes);
   lm.get("max_iterations", p.local_mapping.max_iterations);
   lm.get("observation_sigma_m", p.local_mapping.observation_sigma_m);
   lm.get("huber_sigmas", p.local_mapping.huber_sigmas);
@@ -30,9 +31,12 @@ void loadParams(const YamlParams& yaml, SlamParams& p) {
   const YamlParams lc = slam.section("loop_closure");
   lc.get("enabled", p.loop_closing.enabled);
   lc.get("max_verifications", p.loop_closing.max_verifications);
+  lc.get("max_verifications_after_loop", p.loop_closing.max_verifications_after_loop);
   lc.get("optimise_min_correction_m", p.loop_closing.optimise_min_correction_m);
   lc.get("optimise_min_correction_deg", p.loop_closing.optimise_min_correction_deg);
   lc.get("drift_fraction", p.loop_closing.drift_fraction);
+  lc.get("loop_sigma_xy_m", p.loop_closing.loop_sigma_xy_m);
+  lc.get("loop_sigma_phi_deg", p.loop_closing.loop_sigma_phi_deg);
   lc.get("drift_base_m", p.loop_closing.drift_base_m);
   lc.get("drift_base_deg", p.loop_closing.drift_base_deg);
   lc.get("drift_deg_per_m", p.loop_closing.drift_deg_per_m);
@@ -45,6 +49,8 @@ void loadParams(const YamlParams& yaml, SlamParams& p) {
   const std::string& where = yaml.origin();
   if (p.threads < 1) throw InputError(where, "slam.threads must be >= 1");
   if (p.local_mapping.window_keyframes < 2) throw InputError(where, "slam.local_mapping.window_keyframes must be >= 2");
+  if (p.local_mapping.interval_keyframes < 1 || p.local_mapping.interval_keyframes > p.local_mapping.window_keyframes)
+    throw InputError(where, "slam.local_mapping.interval_keyframes must be in [1, window_keyframes]");
   if (p.local_mapping.min_observations < 2) throw InputError(where, "slam.local_mapping.min_observations must be >= 2");
   if (!(p.local_mapping.observation_sigma_m > 0) || !(p.local_mapping.prior_sigma_xy_m > 0) ||
       !(p.local_mapping.prior_sigma_phi_rad > 0))

@@ -45,6 +45,7 @@ struct SlamKeyframe {
   TPose2D odom_pose;  ///< the tracker's (odometry) frame
   TPose2D odom_edge;  ///< measured pose relative to the previous keyframe (refined by local BA)
   bool lost = false;  ///< created by a tracking loss: odom_edge is a prediction
+  bool session_start = false;  ///< first keyframe of a session: no odometry edge to the previous one
   double travelled_m = 0;
   std::shared_ptr<const std::vector<RadarPoint>> cloud;  ///< peak cloud, sensor frame, compensated
   M2DPDescriptor descriptor, descriptor_flipped;
@@ -68,7 +69,8 @@ struct AcceptedLoop {
   std::uint64_t from = 0, to = 0;  ///< match (older), query
   TPose2D relative;                ///< `to` in the frame of `from`
   Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
-  std::size_t record = 0;  ///< index into records
+  static constexpr std::size_t kNoRecord = static_cast<std::size_t>(-1);
+  std::size_t record = kNoRecord;  ///< index into records (kNoRecord: a loop of a loaded map)
   bool active = true;
 };
 
@@ -79,6 +81,11 @@ struct SlamState {
   std::vector<AcceptedLoop> loops;
   std::vector<LoopRecord> records;
   std::uint64_t corrections = 0;  ///< bumped by every pose-graph correction (invalidates a running BA)
+  /// Extending a loaded map: keyframes [0, session_first) are the map's. The new session's poses
+  /// are in its own odometry frame until loop closing anchors it to the map (anchored = true).
+  std::uint64_t session_first = 0;
+  bool anchored = true;
+  double anchor_travelled_m = 0;  ///< the anchoring keyframe's travelled_m (drift bound to map keyframes)
   SlamStats stats;
 };
 

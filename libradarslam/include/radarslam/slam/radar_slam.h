@@ -51,6 +51,14 @@ class RadarSlam {
   RadarSlam(const RadarSlam&) = delete;
   RadarSlam& operator=(const RadarSlam&) = delete;
 
+  /// Extends `base` (a loaded map) with the scans that follow: call before the first process().
+  /// The map's keyframes, map points and edges become part of the state; the new session is
+  /// anchored to the map by its first verified loop to a map keyframe (relocalisation), then
+  /// loops in both sessions enter one pose graph. map() then holds both sessions (keyframe ids
+  /// renumbered 0..N-1 in the base map's order, then the new ones); trajectory() the new scans.
+  /// finish() throws std::runtime_error if the new session never found the map.
+  void extend(const KeyframeMap& base);
+
   /// Tracks one scan (time order) and hands new keyframes to local mapping. Blocks while local
   /// mapping is more than a bounded queue behind (memory stays bounded).
   SlamStep process(const CObservationRadarScan& scan);

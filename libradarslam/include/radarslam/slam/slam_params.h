@@ -18,6 +18,7 @@ class YamlParams;
 struct LocalMappingParams {
   bool bundle_adjustment = true;
   int window_keyframes = 6;          ///< newest keyframes whose poses the local BA optimises
+  int interval_keyframes = 2;        ///< a local BA after every this many keyframes (the window overlaps)
   int max_iterations = 8;            ///< Levenberg-Marquardt iterations per local BA
   double observation_sigma_m = 0.1;  ///< keypoint position noise (Cartesian pixel 0.25 m / sqrt(12) ~ 0.07)
   double huber_sigmas = 2.0;         ///< robust kernel width, in sigmas
@@ -45,7 +46,10 @@ struct LoopClosingParams {
   M2DPParams m2dp;
   LoopDetectorParams detector;
   LoopVerifierParams verifier;
-  int max_verifications = 3;        ///< candidates verified per keyframe (best descriptor first)
+  int max_verifications = 2;        ///< candidates verified per keyframe (best descriptor first)
+  /// ... and only this many when the previous keyframe closed a loop (along a revisit every
+  /// keyframe has a loop; verification is the most expensive step).
+  int max_verifications_after_loop = 1;
   /// Drift gate (ours; the paper relies on verification alone). A loop says where the query
   /// keyframe really is; odometry cannot have drifted arbitrarily far since the matched keyframe,
   /// so a loop implying a correction larger than drift_base_m + drift_fraction * (distance driven
@@ -61,8 +65,14 @@ struct LoopClosingParams {
   /// After accepting a loop, the graph is optimised only if the loop moves the query keyframe by
   /// more than this from its current estimate; consistent loops (e.g. along a revisit already
   /// corrected) are just added. The final optimisation (finish()) uses every loop.
-  double optimise_min_correction_m = 0.5;
-  double optimise_min_correction_deg = 0.5;
+  double optimise_min_correction_m = 1.0;
+  double optimise_min_correction_deg = 1.0;
+  /// Information of a loop edge: diag(1/sigma^2) with these sigmas - the spread of verified loop
+  /// poses against ground truth on the simulator (max 0.25 m / 1.8 deg). The verifier's own
+  /// Gauss-Newton information (loop/loop_verifier.h) is far more confident than that, which made
+  /// the pose graph's chi^2 test drop hundreds of true loops; set these to 0 to use it anyway.
+  double loop_sigma_xy_m = 0.2;
+  double loop_sigma_phi_deg = 1.0;
 };
 
 struct SlamParams {

@@ -1,0 +1,152 @@
+// `radarslam map` end to end on short simulated drives: the map directory (loadable map,
+// trajectory, grid preview, loops, summary), --threads 1 determinism, extending a map with a
+// second traversal (--extend), and one-line errors for bad input.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "radarslam/io/dataset.h"
+#include "radarslam/io/trajectory_files.h"
+#include "radarslam/map/map_io.h"
+#include "temp_dir.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+};
+
+Result run(const std::string& args, const fs::path& dir) {
+  const auto out_file = dir / "stdout.txt", err_file = dir / "stderr.txt";
+  const std::string cmd =
+      std::string(RADARSLAM_CLI) + " " + args + " > '" + out_file.string() + "' 2> '" + err_file.string() + "'";
+  const int status = std::system(cmd.c_str());
+  Result r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream o(out_file), e(err_file);
+  r.out.assign(std::istreambuf_iterator<char>(o), {});
+  r.err.assign(std::istreambuf_iterator<char>(e), {});
+  return r;
+}
+
+/// Two short drives through the same simulated world (traversal 2: other lane, other traffic),
+/// simulated once for the whole suite.
+class CliMap : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = new fs::path(fs::temp_directory_path() / ("radarslam_cli_map_" + std::to_string(::getpid())));
+    fs::create_directories(*root_);
+    for (const int t : {1, 2}) {
+      const Result r = run("simulate '" + (*root_ / ("t" + std::to_string(t))).string() +
+                               "' --scans 50 --traversal " + std::to_string(t),
+                           *root_);
+      ASSERT_EQ(r.code, 0) << r.err;
+    }
+  }
+  static void TearDownTestSuite() {
+    std::error_code ec;
+    fs::remove_all(*root_, ec);
+    delete root_;
+  }
+  static fs::path data(int traversal) { return *root_ / ("t" + std::to_string(traversal)); }
+  static fs::path* root_;
+  radarslam::test::TempDir tmp_;
+};
+fs::path* CliMap::root_ = nullptr;
+
+TEST_F(CliMap, WritesALoadableMapWithTrajectoryPreviewAndSummary) {
+  const fs::path map = tmp_ / "maps" / "drive";
+  const Result r = run("map '" + data(1).string() + "' -o '" + map.string() + "' --threads 1", tmp_.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const radarslam::KeyframeMap m = radarslam::loadMap(map);
+  EXPECT_GT(m.keyframes.size(), 20u);
+  EXPECT_EQ(m.edges.size() + 1, m.keyframes.size());  // a chain of odometry edges, no loop on 50 scans
+  EXPECT_GT(m.points.size(), 50u);
+  EXPECT_EQ(m.meta.sensor.num_bins, 3768u);
+  const radarslam::Trajectory t = radarslam::readTumTrajectory(map / "trajectory.tum");
+  ASSERT_EQ(t.size(), 50u);
+  // Accuracy against the simulator's ground truth: the end point within 2 % of the path.
+  const auto reader = radarslam::openDataset(data(1));
+  // (The simulator's relative ground truth covers the scans between the first and the last.)
+  const auto& a = t[1];
+  const auto& b = t[t.size() - 2];
+  const auto g0 = reader->groundTruthAt(a.stamp), g1 = reader->groundTruthAt(b.stamp);
+  ASSERT_TRUE(g0 && g1);
+  const auto g = *g1 - *g0;
+  const auto e = b.pose - a.pose;
+  const double path = std::hypot(g.x, g.y);
+  EXPECT_GT(path, 50.0);
+  EXPECT_LT(std::hypot(e.x - g.x, e.y - g.y), 0.02 * path);
+  for (const char* f : {"odometry.tum", "grid.png", "grid.pgm.yaml", "loops.csv", "summary.txt", "eval/report.json"})
+    EXPECT_TRUE(fs::exists(map / f)) << f;
+  EXPECT_NE(r.out.find("map summary"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("accuracy"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("peak RSS"), std::string::npos) << r.out;
+}
+
+TEST_F(CliMap, OneThreadIsDeterministic) {
+  const fs::path a = tmp_ / "a", b = tmp_ / "b";
+  ASSERT_EQ(run("map '" + data(1).string() + "' -o '" + a.string() + "' --threads 1 --count 25 -q", tmp_.path()).code, 0);
+  ASSERT_EQ(run("map '" + data(1).string() + "' -o '" + b.string() + "' --threads 1 --count 25 -q", tmp_.path()).code, 0);
+  std::ifstream fa(a / "trajectory.tum"), fb(b / "trajectory.tum");
+  const std::string ta(std::istreambuf_iterator<char>(fa), {}), tb(std::istreambuf_iterator<char>(fb), {});
+  EXPECT_FALSE(ta.empty());
+  EXPECT_EQ(ta, tb);
+  EXPECT_EQ(radarslam::loadMap(a).keyframes, radarslam::loadMap(b).keyframes);
+}
+
+TEST_F(CliMap, ExtendsAMapWithASecondTraversal) {
+  const fs::path map = tmp_ / "maps" / "world";
+  ASSERT_EQ(run("map '" + data(1).string() + "' -o '" + map.string() + "' --threads 1 -q", tmp_.path()).code, 0);
+  const std::size_t before = radarslam::loadMap(map).keyframes.size();
+  // Into the same map directory: the result replaces it atomically.
+  const Result r = run("map '" + data(2).string() + "' --extend '" + map.string() + "' -o '" + map.string() +
+                           "' --threads 1 -q",
+                       tmp_.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("anchored"), std::string::npos) << r.err;
+  const radarslam::KeyframeMap m = radarslam::loadMap(map);
+  ASSERT_GT(m.keyframes.size(), before + 10);
+  std::size_t loops = 0;
+  for (const auto& e : m.edges) loops += e.kind == radarslam::EdgeKind::Loop;
+  EXPECT_GT(loops, 0u);
+  // The second session is in the first one's frame: each of its keyframes lies near the first
+  // session's path (the two drives follow the same streets, lanes ~1.2 m apart).
+  for (std::size_t i = before; i < m.keyframes.size(); ++i) {
+    double nearest = 1e9;
+    for (std::size_t j = 0; j < before; ++j)
+      nearest = std::min(nearest, std::hypot(m.keyframes[i].pose.x - m.keyframes[j].pose.x,
+                                             m.keyframes[i].pose.y - m.keyframes[j].pose.y));
+    EXPECT_LT(nearest, 4.0) << "keyframe " << i;
+  }
+}
+
+TEST_F(CliMap, BadInputGivesOneLineErrors) {
+  const auto expectError = [&](const std::string& args, const std::string& needle) {
+    const Result r = run(args, tmp_.path());
+    EXPECT_NE(r.code, 0) << args;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << args << "\n" << r.err;
+    EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 2) << r.err;
+  };
+  expectError("map '" + (tmp_ / "missing").string() + "' -o '" + (tmp_ / "m").string() + "'", "no such file");
+  expectError("map '" + data(1).string() + "' -o '" + (tmp_ / "m").string() + "' --threads 0", "--threads");
+  expectError("map '" + data(1).string() + "' -o '" + (tmp_ / "m").string() + "' --bogus", "bogus");
+  expectError("map '" + data(1).string() + "' -o '" + (tmp_ / "m").string() + "' --extend '" +
+                  (tmp_ / "nomap").string() + "'",
+              "nomap");
+  EXPECT_FALSE(fs::exists(tmp_ / "m"));  // nothing half-written
+}
+
+}  // namespace
