@@ -18,55 +18,17 @@
 #include <radarslam/frontend/odometry.h>
 #include <radarslam/io/dataset.h>
 #include <radarslam/io/trajectory_files.h>
+#include <radarslam/slam/slam_params.h>
 
 #include "cli_common.h"
 #include "command.h"
+#include "dataset_config.h"
 
 namespace radarslam::cli {
 namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-std::string configName(DatasetKind kind) {
-  switch (kind) {
-    case DatasetKind::Oxford:
-      return "oxford.yaml";
-    case DatasetKind::MulRanOxfordForm:
-    case DatasetKind::MulRanPolar:
-      return "mulran.yaml";
-    case DatasetKind::Boreas:
-      return "boreas.yaml";
-    case DatasetKind::Radiate:
-      return "radiate.yaml";
-    case DatasetKind::Rawlog:
-      return "";
-  }
-  return "";
-}
-
-/// config/<name> from $RADARSLAM_CONFIG_DIR, else the first `config` folder found walking up from
-/// the executable (build trees live inside the source tree), else none (built-in defaults).
-std::optional<fs::path> findDefaultConfig(const std::string& name) {
-  if (name.empty()) return std::nullopt;
-  if (const char* env = std::getenv("RADARSLAM_CONFIG_DIR")) {
-    if (fs::exists(fs::path(env) / name)) return fs::path(env) / name;
-  }
-  std::error_code ec;
-  fs::path dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
-  for (int up = 0; up < 5 && !ec && !dir.empty(); ++up, dir = dir.parent_path()) {
-    if (fs::exists(dir / "config" / name)) return dir / "config" / name;
-    if (dir == dir.parent_path()) break;
-  }
-  return std::nullopt;
-}
-
-std::string clockText(double s) {
-  char buf[32];
-  const long t = static_cast<long>(s + 0.5);
-  std::snprintf(buf, sizeof buf, "%ld:%02ld", t / 60, t % 60);
-  return buf;
-}
 
 int runOdometry(int argc, char** argv) {
   CommandLine cmd(
@@ -104,14 +66,13 @@ int runOdometry(int argc, char** argv) {
   const auto reader = openDataset(dir);
   OdometryParams params;
   std::string config_used = "built-in defaults";
-  std::optional<fs::path> config;
-  if (config_arg.isSet())
-    config = fs::path(config_arg.getValue());
-  else
-    config = findDefaultConfig(configName(reader->kind()));
+  const std::optional<fs::path> config = findConfig(config_arg.getValue(), reader->kind());
   if (config) {
     const YamlParams yaml = YamlParams::fromFile(config->string());
-    loadParams(yaml, params);
+    // The whole parameter set is validated (a config file also holds the slam: section).
+    SlamParams all;
+    loadParams(yaml, all);
+    params = all.odometry;
     yaml.rejectUnknownKeys();
     config_used = config->string();
   }
