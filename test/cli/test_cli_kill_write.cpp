@@ -23,12 +23,13 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-// The command under test, which (over)writes the map at {map} from the dataset at {data}.
-// Any map-writing subcommand fits (e.g. `map {data} -o {map}`); map-synth places keyframes at
-// the simulated ground truth.
-const std::vector<std::string> kWriteCommand = {"map-synth", "{data}", "-o", "{map}", "--every", "1"};
-// The previous map: the same command with sparser keyframes, so the two maps differ.
-const std::vector<std::string> kPreviousMapCommand = {"map-synth", "{data}", "-o", "{map}", "--every", "6"};
+// The command under test, which (over)writes the map at {map} from the dataset at {data}: the
+// SLAM mapping run itself (one thread: the same map every run).
+const std::vector<std::string> kWriteCommand = {"map", "{data}",  "-o", "{map}", "--threads",
+                                                "1",   "--count", "16", "-q"};
+// The previous map: a shorter run, so the two maps differ.
+const std::vector<std::string> kPreviousMapCommand = {"map", "{data}",  "-o", "{map}", "--threads",
+                                                      "1",   "--count", "8",  "-q"};
 
 std::vector<std::string> substitute(const std::vector<std::string>& args, const fs::path& data,
                                     const fs::path& map) {
