@@ -2,6 +2,8 @@
 // (module reloc): global fix by place recognition + verification, then tracking against the map.
 // Writes the localised scans' poses (TUM) and a per-scan side file with status, covariance and fit
 // (columns in docs/localization.md). With ground truth in DIR it reports the localisation errors.
+// DDS (docs/dds.md): --publish sends every localised pose on rt/radarslam/pose; DIR = "dds:" takes
+// the scans from rt/radarslam/radar_scan instead of a dataset (localize_dds.h).
 #include <unistd.h>
 
 #include <algorithm>
@@ -30,6 +32,7 @@
 
 #include "cli_common.h"
 #include "command.h"
+#include "localize_dds.h"
 
 namespace radarslam::cli {
 namespace {
@@ -134,7 +137,10 @@ int runLocalize(int argc, char** argv) {
   TCLAP::UnlabeledValueArg<std::string> map_arg("map", "Map name (maps/NAME) or directory", true, "", "MAP",
                                                 cmd.tclap());
   TCLAP::UnlabeledValueArg<std::string> dir_arg(
-      "dataset", "Dataset directory (any supported layout) or .rawlog", true, "", "DIR", cmd.tclap());
+      "dataset",
+      "Dataset directory (any supported layout) or .rawlog; or dds: (dds:TOPIC) for live scans over DDS "
+      "(radarslam/RadarScan) until none arrived for --dds-timeout s",
+      true, "", "DIR", cmd.tclap());
   TCLAP::ValueArg<std::string> out_arg("o", "output", "Output poses of the localised scans (TUM)", true, "",
                                        "FILE", cmd.tclap());
   TCLAP::ValueArg<std::string> config_arg(
@@ -151,14 +157,50 @@ int runLocalize(int argc, char** argv) {
       "", "eval-dir", "With ground truth: write the per-scan errors (errors.csv) and summary.txt here", false,
       "", "DIR", cmd.tclap());
   TCLAP::SwitchArg quiet_arg("q", "quiet", "No progress line", cmd.tclap());
+  TCLAP::SwitchArg publish_arg(
+      "", "publish",
+      "Publish every localised pose as geometry_msgs/PoseWithCovarianceStamped (frame map) on "
+      "rt/radarslam/pose (ROS 2: /radarslam/pose)",
+      cmd.tclap());
+  TCLAP::ValueArg<unsigned> domain_arg("", "domain", "DDS domain id (ROS_DOMAIN_ID), 0..232", false, 0, "N",
+                                       cmd.tclap());
+  TCLAP::ValueArg<std::string> dds_config_arg(
+      "", "dds-config", "Cyclone DDS XML configuration (default: built-in loopback, as config/dds.xml)",
+      false, "", "FILE", cmd.tclap());
+  TCLAP::ValueArg<double> dds_timeout_arg(
+      "", "dds-timeout",
+      "DIR = dds: ends after this many seconds without a scan; also the longest wait for "
+      "--wait-subscribers and for pose acknowledgements at exit",
+      false, 5.0, "S", cmd.tclap());
+  TCLAP::ValueArg<unsigned> wait_subs_arg("", "wait-subscribers",
+                                          "With --publish: wait for N pose subscribers before the first scan",
+                                          false, 0, "N", cmd.tclap());
+  TCLAP::ValueArg<std::string> sensor_arg("", "sensor",
+                                          "With DIR = dds:, the odometry parameters of config/NAME.yaml "
+                                          "(oxford, mulran, boreas, radiate; default: "
+                                          "built-in odometry defaults); ignored with --config",
+                                          false, "", "NAME", cmd.tclap());
   cmd.parse(argc, argv);
 
   const std::string where = "radarslam localize";
   if (first_arg.getValue() < 0) throw InputError(where, "--first must be >= 0");
   if (count_arg.isSet() && count_arg.getValue() < 1) throw InputError(where, "--count must be >= 1");
   const fs::path dir = dir_arg.getValue(), out = out_arg.getValue();
-  if (!fs::exists(dir)) throw InputError(dir.string(), "no such file or directory");
+  LocalizeDdsOptions dds_opts;
+  dds_opts.scan_topic = ddsScanTopic(dir_arg.getValue());
+  dds_opts.publish = publish_arg.getValue();
+  dds_opts.domain_id = domain_arg.getValue();
+  dds_opts.config_file = dds_config_arg.getValue();
+  dds_opts.timeout_s = dds_timeout_arg.getValue();
+  dds_opts.wait_subscribers = wait_subs_arg.getValue();
+  const bool from_dds = dds_opts.scan_topic.has_value();
+  if (from_dds && first_arg.getValue() != 0) throw InputError(where, "--first needs a dataset, not dds:");
+  if (!from_dds && !fs::exists(dir)) throw InputError(dir.string(), "no such file or directory");
   if (fs::is_directory(out)) throw InputError(out.string(), "output is a directory, expected a file name");
+
+  // The DDS participant first: discovery overlaps with loading the map.
+  std::unique_ptr<LocalizeDds> dds;
+  if (from_dds || dds_opts.publish) dds = std::make_unique<LocalizeDds>(dds_opts);
 
   const fs::path map_dir = resolveMapPath(map_arg.getValue());
   const auto t_load = Clock::now();
@@ -166,7 +208,7 @@ int runLocalize(int argc, char** argv) {
   if (map.keyframes.empty()) throw InputError(map_dir.string(), "the map has no keyframe");
   const double load_s = std::chrono::duration<double>(Clock::now() - t_load).count();
 
-  const auto reader = openDataset(dir);
+  const std::unique_ptr<DatasetReader> reader = from_dds ? nullptr : openDataset(dir);
   OdometryParams odo_params;
   LocalizerParams loc_params;
   std::string config_used;
@@ -175,7 +217,14 @@ int runLocalize(int argc, char** argv) {
     if (config_arg.isSet()) {
       files.emplace_back(config_arg.getValue());
     } else {
-      if (auto f = findConfig(sensorConfigName(reader->kind()))) files.push_back(*f);
+      const std::string sensor_yaml =
+          reader ? sensorConfigName(reader->kind())
+                 : (sensor_arg.getValue().empty() ? std::string() : sensor_arg.getValue() + ".yaml");
+      if (auto f = findConfig(sensor_yaml)) {
+        files.push_back(*f);
+      } else if (!reader && !sensor_yaml.empty()) {
+        throw InputError(where, "--sensor " + sensor_arg.getValue() + ": no config/" + sensor_yaml);
+      }
       if (auto f = findConfig("localization.yaml")) files.push_back(*f);
     }
     for (const auto& f : files) {
@@ -192,27 +241,44 @@ int runLocalize(int argc, char** argv) {
   }
 
   const std::size_t first = static_cast<std::size_t>(first_arg.getValue());
-  if (first >= reader->size())
-    throw InputError(dir.string(), "--first " + std::to_string(first) + " is beyond the last scan (" +
-                                       std::to_string(reader->size()) + " scans)");
-  const std::size_t end =
-      count_arg.isSet() ? std::min(reader->size(), first + static_cast<std::size_t>(count_arg.getValue()))
-                        : reader->size();
+  const std::size_t max_count =
+      count_arg.isSet() ? static_cast<std::size_t>(count_arg.getValue()) : static_cast<std::size_t>(-1);
+  std::size_t end = 0;  // dataset only
   std::cerr << "localize: map " << map_dir.string() << " (" << map.keyframes.size()
-            << " keyframes, loaded in " << std::to_string(load_s).substr(0, 4) << " s), "
-            << toString(reader->kind()) << " (" << reader->sensorName() << "), scans " << first << ".."
-            << end - 1 << " of " << reader->size() << ", config " << config_used << "\n";
+            << " keyframes, loaded in " << std::to_string(load_s).substr(0, 4) << " s), ";
+  if (reader) {
+    if (first >= reader->size())
+      throw InputError(dir.string(), "--first " + std::to_string(first) + " is beyond the last scan (" +
+                                         std::to_string(reader->size()) + " scans)");
+    end = std::min(reader->size(), first + std::min(max_count, reader->size()));
+    std::cerr << toString(reader->kind()) << " (" << reader->sensorName() << "), scans " << first << ".."
+              << end - 1 << " of " << reader->size();
+  } else {
+    std::cerr << "DDS scans on " << *dds_opts.scan_topic << " (domain " << dds_opts.domain_id << ")";
+  }
+  std::cerr << ", config " << config_used << (dds_opts.publish ? ", publishing poses on DDS" : "") << "\n";
 
   const auto t_init = Clock::now();
   Localizer localizer(map, odo_params, loc_params);
   const double init_s = std::chrono::duration<double>(Clock::now() - t_init).count();
 
-  ScanIterator scans(*reader, skip_arg.getValue(), first, end);
-  auto fetch = [&scans]() {
+  if (dds && !dds->waitForPoseSubscribers())
+    logger().logFmt(mrpt::system::LVL_WARN, "localize: fewer than %u pose subscribers after %.1f s, going on",
+                    dds_opts.wait_subscribers, dds_opts.timeout_s);
+  std::optional<ScanIterator> scans;
+  if (reader) scans.emplace(*reader, skip_arg.getValue(), first, end);
+  if (dds) dds->startScans();
+  std::size_t received = 0;  // DDS scans
+  auto fetch = [&scans, &dds, &received, max_count]() {
     Fetched f;
-    f.scan = scans.next();
-    f.index = scans.index();
-    f.skipped = scans.skipped();
+    if (scans) {
+      f.scan = scans->next();
+      f.index = scans->index();
+      f.skipped = scans->skipped();
+    } else if (received < max_count) {
+      f.scan = dds->nextScan();  // nullptr: the stream ended (--dds-timeout)
+      f.index = received++;
+    }
     return f;
   };
   // Scan decoding (PNG) overlaps with localisation of the previous scan.
@@ -225,7 +291,7 @@ int runLocalize(int argc, char** argv) {
           "fit_score "
           "inliers time_ms\n";
   char line[512];
-  const auto truth = truthInMapFrame(map, *reader, dir);
+  const auto truth = reader ? truthInMapFrame(map, *reader, dir) : std::nullopt;
   const bool gt = truth.has_value();
   std::vector<double> pos_err, head_err, fits;
   std::ostringstream err_csv;
@@ -238,6 +304,22 @@ int runLocalize(int argc, char** argv) {
   const std::clock_t cpu0 = std::clock();
   auto last_print = t0;
   const bool progress = !quiet_arg.getValue() && isatty(STDERR_FILENO);
+  auto last_scan_time = t0;
+  auto printProgress = [&](Clock::time_point now) {
+    const double el = std::chrono::duration<double>(now - t0).count();
+    const double rate = el > 0 ? done / el : 0;
+    if (scans) {
+      const double eta = rate > 0 ? (scans->total() - done - skipped) / rate : 0;
+      std::fprintf(
+          stderr, "%slocalize: %zu/%zu scans (%.0f%%), %.1f scans/s, ETA %s, localised %.1f%%, fixes %zu%s",
+          progress ? "\r" : "", done + skipped, scans->total(), 100.0 * (done + skipped) / scans->total(),
+          rate, clockText(eta).c_str(), 100.0 * localised / done, fixes, progress ? "   " : "\n");
+    } else {  // a live stream: no total, no ETA
+      std::fprintf(stderr, "%slocalize: %zu DDS scans, %.1f scans/s, localised %.1f%%, fixes %zu%s",
+                   progress ? "\r" : "", done, rate, 100.0 * localised / done, fixes,
+                   progress ? "   " : "\n");
+    }
+  };
   for (;;) {
     Fetched f = pending.get();
     if (!f.scan) {
@@ -248,6 +330,7 @@ int runLocalize(int argc, char** argv) {
     skipped = f.skipped;
     const LocalizationResult r = localizer.process(*f.scan);
     ++done;
+    last_scan_time = Clock::now();
     total.odometry += r.timing.odometry, total.cloud += r.timing.cloud, total.tracking += r.timing.tracking;
     total.global += r.timing.global;
     const auto& c = r.covariance;
@@ -262,6 +345,7 @@ int runLocalize(int argc, char** argv) {
       fixes += r.status == LocalizationStatus::GlobalFix;
       if (first_fix < 0) first_fix = static_cast<long>(f.index - first);
       poses.push_back({r.stamp, r.pose});
+      if (dds) dds->publishPose(r.stamp, r.pose, r.covariance);
       fits.push_back(r.fit_score);
       if (gt) {
         if (const auto t = interpolatePose(truth->truth, r.stamp)) {
@@ -278,22 +362,22 @@ int runLocalize(int argc, char** argv) {
       }
     }
     const auto now = Clock::now();
-    if (!quiet_arg.getValue() &&
-        (std::chrono::duration<double>(now - last_print).count() > 1.0 || done + skipped == scans.total())) {
+    const bool last = scans && done + skipped == scans->total();
+    if (!quiet_arg.getValue() && (std::chrono::duration<double>(now - last_print).count() > 1.0 || last)) {
       last_print = now;
-      const double el = std::chrono::duration<double>(now - t0).count();
-      const double rate = el > 0 ? done / el : 0;
-      const double eta = rate > 0 ? (scans.total() - done - skipped) / rate : 0;
-      std::fprintf(
-          stderr, "%slocalize: %zu/%zu scans (%.0f%%), %.1f scans/s, ETA %s, localised %.1f%%, fixes %zu%s",
-          progress ? "\r" : "", done + skipped, scans.total(), 100.0 * (done + skipped) / scans.total(), rate,
-          clockText(eta).c_str(), 100.0 * localised / done, fixes, progress ? "   " : "\n");
+      printProgress(now);
     }
   }
+  // A DDS stream has no known last scan: its final line once the stream ended.
+  if (!scans && !quiet_arg.getValue() && done > 0) printProgress(last_scan_time);
   if (progress) std::fprintf(stderr, "\n");
-  const double elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
+  // A DDS stream ends with --dds-timeout s of silence: not part of the processing time.
+  const double elapsed = std::chrono::duration<double>((scans ? Clock::now() : last_scan_time) - t0).count();
   const double cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
-  if (done == 0) throw InputError(dir.string(), "no scan could be read");
+  if (dds) dds->flush();
+  if (done == 0)
+    throw InputError(dir.string(),
+                     from_dds ? "no scan received within --dds-timeout" : "no scan could be read");
   writeTumTrajectory(out, poses);
   fs::path side_path = out;
   side_path += ".csv";
@@ -316,6 +400,9 @@ int runLocalize(int argc, char** argv) {
       total.global / n, load_s, init_s, 1000 * cpu_s / n, n / cpu_s);
   std::printf("  poses          %s (%zu localised scans), per-scan details %s\n", out.string().c_str(),
               localised, side_path.string().c_str());
+  if (dds_opts.publish)
+    std::printf("  published      %zu poses on %s (domain %u)\n", dds->posesPublished(), ddsPoseTopic(),
+                dds_opts.domain_id);
   if (gt) {
     std::ostringstream s;
     s << "  truth          " << truth->how << "\n";

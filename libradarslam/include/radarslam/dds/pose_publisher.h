@@ -4,6 +4,7 @@
 #include <mrpt/math/TPose2D.h>
 
 #include <array>
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -19,6 +20,10 @@ class PosePublisher {
   /// ROS covariance; z, rot x, rot y get a large variance (1e6) as they are not estimated.
   void publish(StampNs stamp, const mrpt::math::TPose2D& pose, const std::array<double, 9>& covariance_xyphi);
   std::uint32_t matchedSubscriptions() const { return pub_.matchedSubscriptions(); }
+  /// Blocks until every reliable subscriber acknowledged all poses (or the timeout); true if so.
+  bool waitForAcknowledgements(std::chrono::milliseconds timeout) const {
+    return pub_.waitForAcknowledgements(timeout);
+  }
 
   /// The message publish() sends (exposed for tests and other transports).
   static PoseWithCovarianceStampedMsg makeMessage(StampNs stamp, const mrpt::math::TPose2D& pose,

@@ -1,0 +1,76 @@
+#include "localize_dds.h"
+
+#include <array>
+#include <thread>
+
+#include <radarslam/core/errors.h>
+#include <radarslam/core/log.h>
+#include <radarslam/dds/domain.h>
+#include <radarslam/dds/pose_publisher.h>
+#include <radarslam/dds/scan_subscriber.h>
+
+namespace radarslam::cli {
+
+namespace {
+std::chrono::milliseconds toMs(double s) {
+  return std::chrono::milliseconds(static_cast<long long>(s * 1000));
+}
+}  // namespace
+
+std::optional<std::string> ddsScanTopic(const std::string& dir) {
+  const std::string prefix = "dds:";
+  if (dir.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
+  const std::string topic = dir.substr(prefix.size());
+  return topic.empty() ? std::string(dds::kRadarScanTopic) : topic;
+}
+
+const char* ddsPoseTopic() { return dds::kPoseTopic; }
+
+LocalizeDds::LocalizeDds(const LocalizeDdsOptions& options) : options_(options) {
+  if (options_.domain_id > dds::kMaxDomainId)
+    throw InputError("radarslam localize", "--domain must be 0.." + std::to_string(dds::kMaxDomainId));
+  if (!(options_.timeout_s > 0)) throw InputError("radarslam localize", "--dds-timeout must be > 0");
+  domain_ = std::make_unique<dds::Domain>(
+      options_.domain_id, options_.config_file.empty() ? std::string(dds::kLoopbackConfigXml)
+                                                       : dds::readConfigFile(options_.config_file));
+  if (options_.publish) poses_ = std::make_unique<dds::PosePublisher>(*domain_);
+}
+
+LocalizeDds::~LocalizeDds() = default;
+
+bool LocalizeDds::waitForPoseSubscribers() {
+  if (!poses_ || options_.wait_subscribers == 0) return true;
+  const auto deadline = std::chrono::steady_clock::now() + toMs(options_.timeout_s);
+  while (poses_->matchedSubscriptions() < options_.wait_subscribers) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return true;
+}
+
+void LocalizeDds::startScans() {
+  if (options_.scan_topic && !scans_)
+    scans_ = std::make_unique<dds::ScanSubscriber>(*domain_, *options_.scan_topic);
+}
+
+CObservationRadarScan::Ptr LocalizeDds::nextScan() {
+  return scans_ ? scans_->next(toMs(options_.timeout_s)) : nullptr;
+}
+
+void LocalizeDds::publishPose(StampNs stamp, const mrpt::math::TPose2D& pose,
+                              const Eigen::Matrix3d& covariance) {
+  if (!poses_) return;
+  std::array<double, 9> cov{};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) cov[static_cast<std::size_t>(3 * r + c)] = covariance(r, c);
+  poses_->publish(stamp, pose, cov);
+  ++published_;
+}
+
+void LocalizeDds::flush() {
+  if (poses_ && poses_->matchedSubscriptions() > 0 &&
+      !poses_->waitForAcknowledgements(toMs(options_.timeout_s)))
+    logger().logFmt(mrpt::system::LVL_WARN, "localize: not every pose subscriber acknowledged all poses");
+}
+
+}  // namespace radarslam::cli
