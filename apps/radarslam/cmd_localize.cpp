@@ -175,6 +175,11 @@ int runLocalize(int argc, char** argv) {
   TCLAP::ValueArg<unsigned> wait_subs_arg("", "wait-subscribers",
                                           "With --publish: wait for N pose subscribers before the first scan",
                                           false, 0, "N", cmd.tclap());
+  TCLAP::ValueArg<int> scan_queue_arg(
+      "", "scan-queue",
+      "With DIR = dds:, unread scans kept while the localiser is busy; older ones are dropped (4: stay "
+      "live; larger: lose nothing of a fast replay)",
+      false, 4, "N", cmd.tclap());
   TCLAP::ValueArg<std::string> sensor_arg("", "sensor",
                                           "With DIR = dds:, the odometry parameters of config/NAME.yaml "
                                           "(oxford, mulran, boreas, radiate; default: "
@@ -193,6 +198,7 @@ int runLocalize(int argc, char** argv) {
   dds_opts.config_file = dds_config_arg.getValue();
   dds_opts.timeout_s = dds_timeout_arg.getValue();
   dds_opts.wait_subscribers = wait_subs_arg.getValue();
+  dds_opts.scan_queue = scan_queue_arg.getValue();
   const bool from_dds = dds_opts.scan_topic.has_value();
   if (from_dds && first_arg.getValue() != 0) throw InputError(where, "--first needs a dataset, not dds:");
   if (!from_dds && !fs::exists(dir)) throw InputError(dir.string(), "no such file or directory");
@@ -376,8 +382,9 @@ int runLocalize(int argc, char** argv) {
   const double cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   if (dds) dds->flush();
   if (done == 0)
-    throw InputError(dir.string(),
-                     from_dds ? "no scan received within --dds-timeout" : "no scan could be read");
+    throw InputError(from_dds ? where : dir.string(),
+                     from_dds ? "no scan received on " + *dds_opts.scan_topic + " within --dds-timeout"
+                              : std::string("no scan could be read"));
   writeTumTrajectory(out, poses);
   fs::path side_path = out;
   side_path += ".csv";

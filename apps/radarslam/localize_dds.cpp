@@ -30,6 +30,8 @@ LocalizeDds::LocalizeDds(const LocalizeDdsOptions& options) : options_(options) 
   if (options_.domain_id > dds::kMaxDomainId)
     throw InputError("radarslam localize", "--domain must be 0.." + std::to_string(dds::kMaxDomainId));
   if (!(options_.timeout_s > 0)) throw InputError("radarslam localize", "--dds-timeout must be > 0");
+  if (options_.scan_queue < 1 || options_.scan_queue > 1000)
+    throw InputError("radarslam localize", "--scan-queue must be 1..1000");
   domain_ = std::make_unique<dds::Domain>(
       options_.domain_id, options_.config_file.empty() ? std::string(dds::kLoopbackConfigXml)
                                                        : dds::readConfigFile(options_.config_file));
@@ -50,7 +52,7 @@ bool LocalizeDds::waitForPoseSubscribers() {
 
 void LocalizeDds::startScans() {
   if (options_.scan_topic && !scans_)
-    scans_ = std::make_unique<dds::ScanSubscriber>(*domain_, *options_.scan_topic);
+    scans_ = std::make_unique<dds::ScanSubscriber>(*domain_, *options_.scan_topic, options_.scan_queue);
 }
 
 CObservationRadarScan::Ptr LocalizeDds::nextScan() {

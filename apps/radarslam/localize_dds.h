@@ -34,6 +34,7 @@ struct LocalizeDdsOptions {
   std::string config_file;                ///< --dds-config (empty: built-in loopback XML)
   double timeout_s = 5.0;                 ///< --dds-timeout: end of the scan stream
   std::uint32_t wait_subscribers = 0;     ///< --wait-subscribers: pose subscribers to wait for
+  std::int32_t scan_queue = 4;            ///< --scan-queue: unread scans kept (KEEP_LAST), older ones dropped
 };
 
 /// One DDS participant for the localiser; exists only when poses are published or scans received.
