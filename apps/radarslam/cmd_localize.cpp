@@ -27,6 +27,7 @@
 #include <radarslam/io/trajectory_files.h>
 #include <radarslam/map/map_io.h>
 #include <radarslam/reloc/localizer.h>
+#include <radarslam/slam/slam_params.h>
 
 #include <mrpt/poses/CPose2D.h>
 
@@ -238,7 +239,9 @@ int runLocalize(int argc, char** argv) {
       // Our own section first: the odometry loader accepts cartesian:/odometry: only, and
       // rejectUnknownKeys() below then checks the whole file.
       loadParams(yaml.section("localization"), loc_params);
-      loadParams(yaml, odo_params);
+      SlamParams all;  // the whole parameter set is validated (a sensor file also holds slam:)
+      loadParams(yaml, all);
+      odo_params = all.odometry;
       yaml.rejectUnknownKeys();
       if (!config_used.empty()) config_used.append(", ");
       config_used.append(f.string());
