@@ -109,7 +109,8 @@ std::optional<MapFrameTruth> truthInMapFrame(const KeyframeMap& map, const Datas
       const auto a = interpolatePose(src_abs, kf.stamp_ns);
       if (!a) continue;
       // T_abs_map = T_abs_kf (+) T_map_kf^-1
-      const mrpt::poses::CPose2D abs_map = mrpt::poses::CPose2D(*a) - mrpt::poses::CPose2D(kf.pose);
+      const mrpt::poses::CPose2D abs_map =
+          mrpt::poses::CPose2D(*a) + (mrpt::poses::CPose2D() - mrpt::poses::CPose2D(kf.pose));
       MapFrameTruth t;
       for (const auto& sp : readTumTrajectory(abs_dir))
         t.truth.push_back({sp.stamp, (mrpt::poses::CPose2D(sp.pose) - abs_map).asTPose()});
@@ -117,8 +118,21 @@ std::optional<MapFrameTruth> truthInMapFrame(const KeyframeMap& map, const Datas
       return t;
     }
   }
-  if (!src.empty() && fs::equivalent(src, dir, ec) && reader.hasGroundTruth())
-    return MapFrameTruth{reader.groundTruth(), "the dataset's ground truth (the map was built from it)"};
+  if (!src.empty() && fs::equivalent(src, dir, ec) && reader.hasGroundTruth()) {
+    // The map was built from this dataset: tie the truth's frame to the map's through the first
+    // keyframe (a SLAM map starts at the identity, a map-synth map is in the truth's frame).
+    for (const auto& kf : map.keyframes) {
+      const auto g = reader.groundTruthAt(kf.stamp_ns);
+      if (!g) continue;
+      const mrpt::poses::CPose2D map_gt =
+          mrpt::poses::CPose2D(kf.pose) + (mrpt::poses::CPose2D() - mrpt::poses::CPose2D(*g));
+      MapFrameTruth t;
+      for (const auto& sp : reader.groundTruth())
+        t.truth.push_back({sp.stamp, (map_gt + mrpt::poses::CPose2D(sp.pose)).asTPose()});
+      t.how = "the dataset's ground truth (the map was built from it), tied at its first keyframe";
+      return t;
+    }
+  }
   return std::nullopt;
 }
 

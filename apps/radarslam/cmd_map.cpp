@@ -73,17 +73,18 @@ int runMap(int argc, char** argv) {
                                           "Parameters (YAML; default: config/<sensor>.yaml for the detected "
                                           "dataset kind, or built-in defaults)",
                                           false, "", "FILE", cmd.tclap());
-  TCLAP::ValueArg<int> threads_arg("", "threads",
-                                   "1: tracking, local mapping and loop closing in one thread (deterministic); "
-                                   "3: each in its own thread (default: slam.threads of the config, 3)",
-                                   false, 0, "N", cmd.tclap());
+  TCLAP::ValueArg<int> threads_arg(
+      "", "threads",
+      "1: tracking, local mapping and loop closing in one thread (deterministic); "
+      "3: each in its own thread (default: slam.threads of the config, 3)",
+      false, 0, "N", cmd.tclap());
   TCLAP::SwitchArg skip_arg("", "skip-bad-scans", "Skip (with a warning) scans that cannot be read",
                             cmd.tclap());
   TCLAP::ValueArg<long long> first_arg("", "first", "First scan index (0-based)", false, 0, "N", cmd.tclap());
   TCLAP::ValueArg<long long> count_arg("", "count", "Number of scans (default: to the end)", false, -1, "N",
                                        cmd.tclap());
-  TCLAP::ValueArg<double> grid_res_arg("", "grid-resolution", "Preview grid cell size, m (default 0.5)", false,
-                                       0.5, "M", cmd.tclap());
+  TCLAP::ValueArg<double> grid_res_arg("", "grid-resolution", "Preview grid cell size, m (default 0.5)",
+                                       false, 0.5, "M", cmd.tclap());
   TCLAP::ValueArg<std::string> extend_arg(
       "", "extend",
       "Extend this map (name in maps/ or a path) with the new session: it is relocalised in the map by its "
@@ -154,10 +155,11 @@ int runMap(int argc, char** argv) {
       const double rate = el > 0 ? done / el : 0;
       const double eta = rate > 0 ? (scans.total() - done - scans.skipped()) / rate : 0;
       const SlamStats st = slam.stats();
-      std::fprintf(stderr, "%smap: %zu/%zu scans (%.0f%%), %.1f scans/s, ETA %s, %zu keyframes, %zu loops, lost %zu%s",
-                   tty ? "\r" : "", done + scans.skipped(), scans.total(),
-                   100.0 * (done + scans.skipped()) / scans.total(), rate, clockText(eta).c_str(), st.keyframes,
-                   st.loops_accepted, st.lost_scans, tty ? "   " : "\n");
+      std::fprintf(
+          stderr, "%smap: %zu/%zu scans (%.0f%%), %.1f scans/s, ETA %s, %zu keyframes, %zu loops, lost %zu%s",
+          tty ? "\r" : "", done + scans.skipped(), scans.total(),
+          100.0 * (done + scans.skipped()) / scans.total(), rate, clockText(eta).c_str(), st.keyframes,
+          st.loops_accepted, st.lost_scans, tty ? "   " : "\n");
     }
   }
   if (!quiet_arg.getValue() && tty) std::fprintf(stderr, "\n");
@@ -193,10 +195,12 @@ int runMap(int argc, char** argv) {
   std::ostringstream sum;
   char buf[512];
   sum << "map summary\n";
-  std::snprintf(buf, sizeof buf, "  scans          %zu processed (%zu lost: constant-velocity prediction), %zu skipped\n",
+  std::snprintf(buf, sizeof buf,
+                "  scans          %zu processed (%zu lost: constant-velocity prediction), %zu skipped\n",
                 done, st.lost_scans, scans.skipped());
   sum << buf;
-  std::snprintf(buf, sizeof buf, "  map            %zu keyframes, %zu map points, %zu edges -> %s (saved in %.0f ms)\n",
+  std::snprintf(buf, sizeof buf,
+                "  map            %zu keyframes, %zu map points, %zu edges -> %s (saved in %.0f ms)\n",
                 map.keyframes.size(), map.points.size(), map.edges.size(), map_dir.string().c_str(), save_ms);
   sum << buf;
   std::snprintf(buf, sizeof buf,
@@ -206,27 +210,30 @@ int runMap(int argc, char** argv) {
                 st.graph_optimisations);
   sum << buf;
   const double n = static_cast<double>(done);
-  std::snprintf(buf, sizeof buf,
-                "  speed          %.1f scans/s overall (%.1f while tracking; finish %.1f s); per scan: tracking "
-                "%.1f ms; per keyframe: local mapping %.1f ms, loop closing %.1f ms; %zu local BAs, graph "
-                "%.0f ms total\n",
-                n / elapsed, n / track_s, elapsed - track_s, st.tracking_ms / n,
-                st.keyframes ? st.local_mapping_ms / st.keyframes : 0.0,
-                st.keyframes ? st.loop_closing_ms / st.keyframes : 0.0, st.bundle_adjustments, st.graph_ms);
+  std::snprintf(
+      buf, sizeof buf,
+      "  speed          %.1f scans/s overall (%.1f while tracking; finish %.1f s); per scan: tracking "
+      "%.1f ms; per keyframe: local mapping %.1f ms, loop closing %.1f ms; %zu local BAs, graph "
+      "%.0f ms total\n",
+      n / elapsed, n / track_s, elapsed - track_s, st.tracking_ms / n,
+      st.keyframes ? st.local_mapping_ms / st.keyframes : 0.0,
+      st.keyframes ? st.loop_closing_ms / st.keyframes : 0.0, st.bundle_adjustments, st.graph_ms);
   sum << buf;
   std::snprintf(buf, sizeof buf, "  memory         peak RSS %.0f MiB\n", peakRssMiB());
   sum << buf;
-  sum << "  outputs        " << (map_dir / "trajectory.tum").string() << ", odometry.tum, grid.png, loops.csv\n";
+  sum << "  outputs        " << (map_dir / "trajectory.tum").string()
+      << ", odometry.tum, grid.png, loops.csv\n";
 
   if (reader->hasGroundTruth()) {
     const Trajectory& gt = reader->groundTruth();
     const eval::EvalReport report = eval::evaluate(traj, gt, {}, "SLAM", dir.string());
     const eval::EvalReport odo = eval::evaluate(slam.odometryTrajectory(), gt, {}, "odometry", dir.string());
-    std::snprintf(buf, sizeof buf,
-                  "  accuracy       SLAM %.2f %% / %.4f deg/m, ATE %.2f m RMSE (odometry only: %.2f %% / %.4f "
-                  "deg/m, ATE %.2f m)\n",
-                  report.kitti.t_err_percent, report.kitti.r_err_deg_per_m, report.ate.trans_m.rmse,
-                  odo.kitti.t_err_percent, odo.kitti.r_err_deg_per_m, odo.ate.trans_m.rmse);
+    std::snprintf(
+        buf, sizeof buf,
+        "  accuracy       SLAM %.2f %% / %.4f deg/m, ATE %.2f m RMSE (odometry only: %.2f %% / %.4f "
+        "deg/m, ATE %.2f m)\n",
+        report.kitti.t_err_percent, report.kitti.r_err_deg_per_m, report.ate.trans_m.rmse,
+        odo.kitti.t_err_percent, odo.kitti.r_err_deg_per_m, odo.ate.trans_m.rmse);
     sum << buf;
     LoopEvaluationParams lp;
     lp.exclude_recent = params.loop_closing.detector.exclude_recent;
@@ -254,6 +261,7 @@ int runMap(int argc, char** argv) {
 
 }  // namespace
 
-RADARSLAM_COMMAND("map", "Full RadarSLAM over a dataset: keyframe map, trajectory, loops (maps/NAME)", runMap);
+RADARSLAM_COMMAND("map", "Full RadarSLAM over a dataset: keyframe map, trajectory, loops (maps/NAME)",
+                  runMap);
 
 }  // namespace radarslam::cli

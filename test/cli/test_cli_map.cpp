@@ -30,8 +30,8 @@ struct Result {
 
 Result run(const std::string& args, const fs::path& dir) {
   const auto out_file = dir / "stdout.txt", err_file = dir / "stderr.txt";
-  const std::string cmd =
-      std::string(RADARSLAM_CLI) + " " + args + " > '" + out_file.string() + "' 2> '" + err_file.string() + "'";
+  const std::string cmd = std::string(RADARSLAM_CLI) + " " + args + " > '" + out_file.string() + "' 2> '" +
+                          err_file.string() + "'";
   const int status = std::system(cmd.c_str());
   Result r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -89,7 +89,8 @@ TEST_F(CliMap, WritesALoadableMapWithTrajectoryPreviewAndSummary) {
   const double path = std::hypot(g.x, g.y);
   EXPECT_GT(path, 50.0);
   EXPECT_LT(std::hypot(e.x - g.x, e.y - g.y), 0.02 * path);
-  for (const char* f : {"odometry.tum", "grid.png", "grid.pgm.yaml", "loops.csv", "summary.txt", "eval/report.json"})
+  for (const char* f :
+       {"odometry.tum", "grid.png", "grid.pgm.yaml", "loops.csv", "summary.txt", "eval/report.json"})
     EXPECT_TRUE(fs::exists(map / f)) << f;
   EXPECT_NE(r.out.find("map summary"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("accuracy"), std::string::npos) << r.out;
@@ -98,8 +99,14 @@ TEST_F(CliMap, WritesALoadableMapWithTrajectoryPreviewAndSummary) {
 
 TEST_F(CliMap, OneThreadIsDeterministic) {
   const fs::path a = tmp_ / "a", b = tmp_ / "b";
-  ASSERT_EQ(run("map '" + data(1).string() + "' -o '" + a.string() + "' --threads 1 --count 25 -q", tmp_.path()).code, 0);
-  ASSERT_EQ(run("map '" + data(1).string() + "' -o '" + b.string() + "' --threads 1 --count 25 -q", tmp_.path()).code, 0);
+  ASSERT_EQ(
+      run("map '" + data(1).string() + "' -o '" + a.string() + "' --threads 1 --count 25 -q", tmp_.path())
+          .code,
+      0);
+  ASSERT_EQ(
+      run("map '" + data(1).string() + "' -o '" + b.string() + "' --threads 1 --count 25 -q", tmp_.path())
+          .code,
+      0);
   std::ifstream fa(a / "trajectory.tum"), fb(b / "trajectory.tum");
   const std::string ta(std::istreambuf_iterator<char>(fa), {}), tb(std::istreambuf_iterator<char>(fb), {});
   EXPECT_FALSE(ta.empty());
@@ -109,7 +116,8 @@ TEST_F(CliMap, OneThreadIsDeterministic) {
 
 TEST_F(CliMap, ExtendsAMapWithASecondTraversal) {
   const fs::path map = tmp_ / "maps" / "world";
-  ASSERT_EQ(run("map '" + data(1).string() + "' -o '" + map.string() + "' --threads 1 -q", tmp_.path()).code, 0);
+  ASSERT_EQ(run("map '" + data(1).string() + "' -o '" + map.string() + "' --threads 1 -q", tmp_.path()).code,
+            0);
   const std::size_t before = radarslam::loadMap(map).keyframes.size();
   // Into the same map directory: the result replaces it atomically.
   const Result r = run("map '" + data(2).string() + "' --extend '" + map.string() + "' -o '" + map.string() +

@@ -61,7 +61,8 @@ Scenario makeScenario(std::uint32_t seed, double obs_noise = 0.05) {
       pb.observations.push_back({k, pb.points.size() - 1, z});
     }
   }
-  for (std::size_t k = 1; k < s.truth.size(); ++k) pb.priors.push_back({k - 1, k, relative(s.truth[k - 1], s.truth[k])});
+  for (std::size_t k = 1; k < s.truth.size(); ++k)
+    pb.priors.push_back({k - 1, k, relative(s.truth[k - 1], s.truth[k])});
   return s;
 }
 

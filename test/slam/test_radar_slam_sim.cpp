@@ -83,11 +83,14 @@ TEST_F(SlamOnSimulation, ClosesLoopsWithoutFalseOnesAndBeatsOdometry) {
   lp.exclude_recent_distance_m = 100;
   const LoopEvaluation le = evaluateLoops(run.map, run.loops, *truth_, lp);
   std::printf(
-      "[ slam ] %zu scans, %zu keyframes, %zu map points; loops: %zu verified, %zu accepted, %zu false, recall "
-      "%.2f; %zu removed by the graph, %zu optimisations; ATE %.2f m (odometry %.2f m), KITTI %.2f %% (odometry %.2f %%)\n",
+      "[ slam ] %zu scans, %zu keyframes, %zu map points; loops: %zu verified, %zu accepted, %zu false, "
+      "recall "
+      "%.2f; %zu removed by the graph, %zu optimisations; ATE %.2f m (odometry %.2f m), KITTI %.2f %% "
+      "(odometry %.2f %%)\n",
       run.trajectory.size(), run.map.keyframes.size(), run.map.points.size(), run.stats.loop_candidates,
-      run.stats.loops_accepted, le.false_accepted, le.recall, run.stats.loops_rejected_by_graph, run.stats.graph_optimisations, slam.ate.trans_m.rmse, odo.ate.trans_m.rmse,
-      slam.kitti.t_err_percent, odo.kitti.t_err_percent);
+      run.stats.loops_accepted, le.false_accepted, le.recall, run.stats.loops_rejected_by_graph,
+      run.stats.graph_optimisations, slam.ate.trans_m.rmse, odo.ate.trans_m.rmse, slam.kitti.t_err_percent,
+      odo.kitti.t_err_percent);
   EXPECT_EQ(run.trajectory.size(), sim_->numScans());
   EXPECT_EQ(le.false_in_graph, 0u);
   EXPECT_GE(le.keyframes_with_true_loop, 20u);

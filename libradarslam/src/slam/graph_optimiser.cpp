@@ -27,9 +27,9 @@ bool optimiseAndCorrect(SlamState& state, const SlamParams& params) {
     for (std::size_t i = 1; i < n; ++i) {
       const auto& kf = state.keyframes[i];
       if (kf.session_start) continue;
-      graph.addOdometryEdge(i - 1, i, kf.odom_edge,
-                            odometryInformation(params.odometry_edges, std::hypot(kf.odom_edge.x, kf.odom_edge.y),
-                                                kf.lost));
+      graph.addOdometryEdge(
+          i - 1, i, kf.odom_edge,
+          odometryInformation(params.odometry_edges, std::hypot(kf.odom_edge.x, kf.odom_edge.y), kf.lost));
       loop_of_edge.push_back(static_cast<std::size_t>(-1));
     }
     if (!state.anchored) return false;  // the new session is not connected to the map yet
@@ -47,7 +47,8 @@ bool optimiseAndCorrect(SlamState& state, const SlamParams& params) {
     const std::size_t l = loop_of_edge.at(e);
     if (l == static_cast<std::size_t>(-1)) continue;
     state.loops[l].active = false;
-    if (state.loops[l].record != AcceptedLoop::kNoRecord) state.records[state.loops[l].record].rejected_by_graph = true;
+    if (state.loops[l].record != AcceptedLoop::kNoRecord)
+      state.records[state.loops[l].record].rejected_by_graph = true;
     ++state.stats.loops_rejected_by_graph;
     logger().logFmt(mrpt::system::LVL_DEBUG, "slam: pose graph rejected loop %llu -> %llu",
                     static_cast<unsigned long long>(state.loops[l].from),
@@ -65,7 +66,8 @@ bool optimiseAndCorrect(SlamState& state, const SlamParams& params) {
   }
   ++state.corrections;
   ++state.stats.graph_optimisations;
-  state.stats.graph_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  state.stats.graph_ms +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   logger().logFmt(mrpt::system::LVL_DEBUG, "slam: pose graph %zu nodes, chi2 %.1f -> %.1f, %zu iterations", n,
                   report.chi2_initial, report.chi2_final, report.iterations);
   return true;

@@ -26,7 +26,8 @@ struct ObservationCost {
 
 /// Relative-pose prior: (from^-1 (+) to) (-) measured, weighted per component.
 struct RelativePoseCost {
-  RelativePoseCost(const mrpt::math::TPose2D& m, double sxy, double sphi) : m_(m), wxy_(1 / sxy), wphi_(1 / sphi) {}
+  RelativePoseCost(const mrpt::math::TPose2D& m, double sxy, double sphi)
+      : m_(m), wxy_(1 / sxy), wphi_(1 / sphi) {}
   template <typename T>
   bool operator()(const T* a, const T* b, T* r) const {
     const T c = ceres::cos(a[2]), s = ceres::sin(a[2]);
@@ -90,7 +91,8 @@ BAReport solveLocalBundleAdjustment(BAProblem& pb, const LocalMappingParams& par
   report.converged = summary.termination_type == ceres::CONVERGENCE;
   if (summary.termination_type == ceres::FAILURE) return report;  // keep the input
 
-  for (std::size_t i = 0; i < x.size(); ++i) pb.poses[i] = {x[i][0], x[i][1], std::remainder(x[i][2], 2 * M_PI)};
+  for (std::size_t i = 0; i < x.size(); ++i)
+    pb.poses[i] = {x[i][0], x[i][1], std::remainder(x[i][2], 2 * M_PI)};
   for (std::size_t j = 0; j < p.size(); ++j) pb.points[j] = {p[j][0], p[j][1]};
   const double gate = params.huber_sigmas * params.observation_sigma_m;
   for (const auto& o : pb.observations) {

@@ -12,8 +12,8 @@ void LocalMapper::insert(const KeyframeJob& job) {
   const auto t0 = std::chrono::steady_clock::now();
   // Peak cloud (Algorithm 1) moved to the scan's reference time, and its M2DP descriptor (both
   // signs of the PCA axis, see loop/m2dp.h): outside the lock, this is the expensive part.
-  auto cloud = std::make_shared<std::vector<RadarPoint>>(
-      motionCompensated(extractPeakCloud(*job.scan, params_.loop_closing.peak_cloud), *job.scan, job.velocity));
+  auto cloud = std::make_shared<std::vector<RadarPoint>>(motionCompensated(
+      extractPeakCloud(*job.scan, params_.loop_closing.peak_cloud), *job.scan, job.velocity));
   SlamKeyframe kf;
   kf.id = job.id;
   kf.stamp = job.stamp;

@@ -54,18 +54,22 @@ void LoopCloser::process(std::uint64_t id) {
   // The drift bound between keyframe `m` and the query (see LoopClosingParams).
   auto driftBound = [&](std::uint64_t m) {
     // To a keyframe of a loaded map: the new session has drifted since it was anchored.
-    const double d = travelled - (m < state_.session_first ? state_.anchor_travelled_m : state_.keyframes[m].travelled_m);
-    return std::pair(lc.drift_base_m + lc.drift_fraction * d, (lc.drift_base_deg + lc.drift_deg_per_m * d) * M_PI / 180);
+    const double d =
+        travelled - (m < state_.session_first ? state_.anchor_travelled_m : state_.keyframes[m].travelled_m);
+    return std::pair(lc.drift_base_m + lc.drift_fraction * d,
+                     (lc.drift_base_deg + lc.drift_deg_per_m * d) * M_PI / 180);
   };
   bool optimise = false, closed = false;
   if ((params_.loop_closing.enabled || !anchored) && descriptors[0].size() > 0) {
-    auto candidates = anchored ? detector_.query(descriptors, travelled) : map_detector_->query(descriptors, travelled);
+    auto candidates =
+        anchored ? detector_.query(descriptors, travelled) : map_detector_->query(descriptors, travelled);
     if (gate) {
       std::lock_guard lock(state_.mutex);
       const TPose2D& q = state_.keyframes[id].pose;
       std::erase_if(candidates, [&](const LoopCandidate& c) {
         const TPose2D& m = state_.keyframes[c.keyframe].pose;
-        return std::hypot(q.x - m.x, q.y - m.y) > lc.verifier.max_translation_m + driftBound(c.keyframe).first;
+        return std::hypot(q.x - m.x, q.y - m.y) >
+               lc.verifier.max_translation_m + driftBound(c.keyframe).first;
       });
     }
     const std::size_t n = std::min<std::size_t>(
@@ -113,7 +117,8 @@ void LoopCloser::process(std::uint64_t id) {
         loop.information = Eigen::Vector3d(1 / (sxy * sxy), 1 / (sxy * sxy), 1 / (sphi * sphi)).asDiagonal();
       }
       optimise |= dm > lc.optimise_min_correction_m || da > lc.optimise_min_correction_deg * M_PI / 180;
-      logger().logFmt(mrpt::system::LVL_DEBUG, "slam: loop %llu -> %llu accepted (inliers %.2f, correction %.2f m)",
+      logger().logFmt(mrpt::system::LVL_DEBUG,
+                      "slam: loop %llu -> %llu accepted (inliers %.2f, correction %.2f m)",
                       static_cast<unsigned long long>(loop.from), static_cast<unsigned long long>(loop.to),
                       v.inlier_ratio, dm);
       state_.loops.push_back(loop);

@@ -54,7 +54,8 @@ LoopEvaluation evaluateLoops(const KeyframeMap& map, const std::vector<LoopRecor
     ev.keyframes_with_true_loop += has_true[q];
     ev.keyframes_with_loop_found += has_true[q] && found[q];
   }
-  ev.recall = ev.keyframes_with_true_loop ? double(ev.keyframes_with_loop_found) / ev.keyframes_with_true_loop : 0;
+  ev.recall =
+      ev.keyframes_with_true_loop ? double(ev.keyframes_with_loop_found) / ev.keyframes_with_true_loop : 0;
   return ev;
 }
 

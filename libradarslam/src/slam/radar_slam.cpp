@@ -75,7 +75,8 @@ struct RadarSlam::Impl {
   }
 
   void extend(const KeyframeMap& base) {
-    if (!anchors.empty() || !state.keyframes.empty()) throw std::logic_error("RadarSlam::extend after process()");
+    if (!anchors.empty() || !state.keyframes.empty())
+      throw std::logic_error("RadarSlam::extend after process()");
     if (base.keyframes.empty()) throw std::invalid_argument("RadarSlam::extend: the map has no keyframe");
     std::map<std::uint64_t, std::uint64_t> index;  // map keyframe id -> state index
     double travelled_m = 0;
@@ -94,11 +95,10 @@ struct RadarSlam::Impl {
       kf.travelled_m = travelled_m;
       auto cloud = std::make_shared<std::vector<RadarPoint>>();
       cloud->reserve(k.points.size());
-      for (const auto& p : k.points)
-        cloud->push_back({p.x, p.y, std::hypot(p.x, p.y), p.power, 0});
+      for (const auto& p : k.points) cloud->push_back({p.x, p.y, std::hypot(p.x, p.y), p.power, 0});
       kf.descriptor = k.descriptor.empty() ? computeM2DP(*cloud, params.loop_closing.m2dp)
-                                           : Eigen::Map<const Eigen::VectorXf>(k.descriptor.data(),
-                                                                                static_cast<long>(k.descriptor.size()));
+                                           : Eigen::Map<const Eigen::VectorXf>(
+                                                 k.descriptor.data(), static_cast<long>(k.descriptor.size()));
       kf.descriptor_flipped = computeM2DP(*cloud, params.loop_closing.m2dp, true);
       kf.cloud = std::move(cloud);
       state.keyframes.push_back(std::move(kf));
@@ -173,7 +173,8 @@ struct RadarSlam::Impl {
     step.pose = mapPose(anchor);
     ++state.stats.scans;
     state.stats.lost_scans += o.status == TrackingStatus::Lost;
-    state.stats.tracking_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    state.stats.tracking_ms +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return step;
   }
 
@@ -229,7 +230,8 @@ struct RadarSlam::Impl {
       m.edges.push_back(e);
     }
     for (const auto& mp : state.points) {
-      if (mp.culled || static_cast<int>(mp.observations.size()) < params.local_mapping.min_observations) continue;
+      if (mp.culled || static_cast<int>(mp.observations.size()) < params.local_mapping.min_observations)
+        continue;
       MapPoint p;
       p.id = m.points.size();
       p.x = mp.xy.x();
@@ -266,7 +268,8 @@ SlamStats RadarSlam::stats() const {
   s.keyframes = impl_->state.keyframes.size();
   s.map_points = 0;
   for (const auto& mp : impl_->state.points)
-    s.map_points += !mp.culled && static_cast<int>(mp.observations.size()) >= impl_->params.local_mapping.min_observations;
+    s.map_points += !mp.culled &&
+                    static_cast<int>(mp.observations.size()) >= impl_->params.local_mapping.min_observations;
   return s;
 }
 const SlamParams& RadarSlam::params() const { return impl_->params; }

@@ -48,10 +48,13 @@ void loadParams(const YamlParams& yaml, SlamParams& p) {
 
   const std::string& where = yaml.origin();
   if (p.threads < 1) throw InputError(where, "slam.threads must be >= 1");
-  if (p.local_mapping.window_keyframes < 2) throw InputError(where, "slam.local_mapping.window_keyframes must be >= 2");
-  if (p.local_mapping.interval_keyframes < 1 || p.local_mapping.interval_keyframes > p.local_mapping.window_keyframes)
+  if (p.local_mapping.window_keyframes < 2)
+    throw InputError(where, "slam.local_mapping.window_keyframes must be >= 2");
+  if (p.local_mapping.interval_keyframes < 1 ||
+      p.local_mapping.interval_keyframes > p.local_mapping.window_keyframes)
     throw InputError(where, "slam.local_mapping.interval_keyframes must be in [1, window_keyframes]");
-  if (p.local_mapping.min_observations < 2) throw InputError(where, "slam.local_mapping.min_observations must be >= 2");
+  if (p.local_mapping.min_observations < 2)
+    throw InputError(where, "slam.local_mapping.min_observations must be >= 2");
   if (!(p.local_mapping.observation_sigma_m > 0) || !(p.local_mapping.prior_sigma_xy_m > 0) ||
       !(p.local_mapping.prior_sigma_phi_rad > 0))
     throw InputError(where, "slam.local_mapping sigmas must be > 0");
@@ -59,7 +62,8 @@ void loadParams(const YamlParams& yaml, SlamParams& p) {
       p.odometry_edges.sigma_xy_per_m < 0 || p.odometry_edges.sigma_phi_per_m < 0 ||
       !(p.odometry_edges.lost_factor >= 1))
     throw InputError(where, "slam.odometry_edges: sigmas must be > 0 and lost_factor >= 1");
-  if (p.loop_closing.max_verifications < 1) throw InputError(where, "slam.loop_closure.max_verifications must be >= 1");
+  if (p.loop_closing.max_verifications < 1)
+    throw InputError(where, "slam.loop_closure.max_verifications must be >= 1");
 }
 
 }  // namespace radarslam

@@ -41,10 +41,10 @@ inline Eigen::Vector2d inverseTransformPoint(const TPose2D& a, const Eigen::Vect
 struct SlamKeyframe {
   std::uint64_t id = 0;
   StampNs stamp = 0;
-  TPose2D pose;       ///< map frame, current estimate
-  TPose2D odom_pose;  ///< the tracker's (odometry) frame
-  TPose2D odom_edge;  ///< measured pose relative to the previous keyframe (refined by local BA)
-  bool lost = false;  ///< created by a tracking loss: odom_edge is a prediction
+  TPose2D pose;                ///< map frame, current estimate
+  TPose2D odom_pose;           ///< the tracker's (odometry) frame
+  TPose2D odom_edge;           ///< measured pose relative to the previous keyframe (refined by local BA)
+  bool lost = false;           ///< created by a tracking loss: odom_edge is a prediction
   bool session_start = false;  ///< first keyframe of a session: no odometry edge to the previous one
   double travelled_m = 0;
   std::shared_ptr<const std::vector<RadarPoint>> cloud;  ///< peak cloud, sensor frame, compensated
@@ -55,7 +55,7 @@ struct SlamKeyframe {
 };
 
 struct SlamMapPoint {
-  Eigen::Vector2d xy;  ///< map frame
+  Eigen::Vector2d xy;           ///< map frame
   std::uint64_t reference = 0;  ///< keyframe that first saw it: loop corrections move it with that one
   struct Observation {
     std::uint64_t keyframe;

@@ -29,7 +29,7 @@ struct LoopEvaluation {
   std::size_t keyframes_evaluated = 0;  ///< keyframes with a ground-truth pose
   std::size_t keyframes_with_true_loop = 0, keyframes_with_loop_found = 0;
   std::size_t accepted = 0, false_accepted = 0;  ///< by verification (before the graph's test)
-  std::size_t false_in_graph = 0;               ///< false loops still active after optimisation
+  std::size_t false_in_graph = 0;                ///< false loops still active after optimisation
   double recall = 0;
   double max_error_m = 0, max_error_deg = 0;  ///< over correct accepted loops
 };

@@ -25,10 +25,10 @@ namespace radarslam {
 struct LoopRecord {
   std::uint64_t query = 0, match = 0;  ///< keyframe ids (match is older)
   float descriptor_distance = 0;
-  bool accepted = false;                 ///< by geometric verification
-  bool rejected_by_graph = false;        ///< accepted, then removed by the pose graph's chi^2 test
-  std::string reason;                    ///< why verification rejected it
-  mrpt::math::TPose2D relative;          ///< query in match's frame (when accepted)
+  bool accepted = false;           ///< by geometric verification
+  bool rejected_by_graph = false;  ///< accepted, then removed by the pose graph's chi^2 test
+  std::string reason;              ///< why verification rejected it
+  mrpt::math::TPose2D relative;    ///< query in match's frame (when accepted)
   double inlier_ratio = 0, ambiguity_ratio = 1;
 };
 

@@ -42,11 +42,11 @@ struct OdometryEdgeParams {
 /// Loop closing (Sec. III-C).
 struct LoopClosingParams {
   bool enabled = true;
-  PeakCloudParams peak_cloud;       ///< Algorithm 1
+  PeakCloudParams peak_cloud;  ///< Algorithm 1
   M2DPParams m2dp;
   LoopDetectorParams detector;
   LoopVerifierParams verifier;
-  int max_verifications = 2;        ///< candidates verified per keyframe (best descriptor first)
+  int max_verifications = 2;  ///< candidates verified per keyframe (best descriptor first)
   /// ... and only this many when the previous keyframe closed a loop (along a revisit every
   /// keyframe has a loop; verification is the most expensive step).
   int max_verifications_after_loop = 1;
