@@ -41,8 +41,7 @@ TEST(OdometryParams, EveryShippedConfigLoads) {
     SCOPED_TRACE(path.string());
     const YamlParams y = YamlParams::fromFile(path.string());
     OdometryParams p;
-    EXPECT_NO_THROW(loadParams(y, p));
-    EXPECT_NO_THROW(y.rejectUnknownKeys());
+    EXPECT_NO_THROW(loadParams(y, p));  // unknown keys: test/slam (the files also hold slam:)
     ++n;
   }
   EXPECT_EQ(n, 5);
