@@ -17,6 +17,8 @@
 #include <thread>
 #include <vector>
 
+#include <stdexcept>
+
 #include <radarslam/map/keyframe_map.h>
 #include <radarslam/map/map_from_trajectory.h>
 
@@ -24,10 +26,12 @@ extern char** environ;
 
 namespace radarslam::test {
 
-/// A DDS domain id unique to this test (index 0..9, distinct per test) and this process: parallel
-/// ctest runs of different tests never share an id; the pid spreads runs of the suite.
+/// A DDS domain id for this test: `index` (0..19) is distinct per test, the pid spreads runs of the
+/// suite. Two tests running at the same time never share an id: equal ids need equal indices
+/// (the pid part is a multiple of 20), i.e. the same test. Ids stay within 1..200 (Cyclone: < 233).
 inline unsigned testDomainId(unsigned index) {
-  return 1 + (static_cast<unsigned>(::getpid()) % 23) * 10 + index;
+  if (index >= 20) throw std::logic_error("testDomainId: index must be < 20");
+  return 1 + (static_cast<unsigned>(::getpid()) % 10) * 20 + index;
 }
 
 inline std::string readText(const std::filesystem::path& p) {

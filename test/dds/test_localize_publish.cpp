@@ -148,7 +148,7 @@ TEST(LocalizePublish, NoScanWithinTheTimeoutIsAOneLineError) {
   saveMap(test::syntheticMap(3, 200, 30.0, 1), tmp.path() / "map");
   const int rc =
       runCli({"localize", (tmp.path() / "map").string(), "dds:", "-o", (tmp.path() / "o.tum").string(),
-              "--domain", std::to_string(test::testDomainId(11)), "--dds-timeout", "0.5", "-q"},
+              "--domain", std::to_string(test::testDomainId(12)), "--dds-timeout", "0.5", "-q"},
              tmp.path() / "loc");
   EXPECT_EQ(rc, 1);
   const std::string e = test::readText(tmp.path() / "loc.err");
