@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <iterator>
+#include <vector>
 
 #include "io_test_util.h"
 #include "radarslam/io/dataset.h"
@@ -105,4 +107,30 @@ TEST(IoRegressionsFuzz, RawlogHugeScanSize) {
   patch(bytes, std::string("\x07\0\0\0\x0d\0\0\0", 8), std::string("\0\x40\0\0\0\0\x01\0", 8));
   writeBytes(tmp / "big.rawlog", bytes);
   expectInputError([&] { openDataset(tmp / "big.rawlog"); }, "big.rawlog", "implausible size");
+}
+
+// A PNG whose IHDR claims 24688 x 66416 pixels (valid CRCs): OpenCV's decoder threw cv::Exception
+// (CV_IO_MAX_IMAGE_PIXELS), which escaped as a non-InputError (found by fuzz_polar_png_transposed).
+TEST(IoRegressionsFuzz, PngHeaderClaimingAHugeImage) {
+  test::TempDir tmp;
+  writeText(tmp / "radiate" / "Navtech_Polar.txt",
+            "Frame: 000001 Time: 1574859771.744660272\nFrame: 000002 Time: 1574859771.977525228\n");
+  const auto png = tmp / "radiate" / "Navtech_Polar" / "000001.png";
+  test::writeTransposedPng(png, 8, 16);
+  std::ifstream in(png, std::ios::binary);
+  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
+  ASSERT_GE(bytes.size(), 33u);
+  // IHDR data at bytes 16..28 (width, height big-endian), its CRC over bytes 12..28 at 29..32.
+  const std::uint8_t dims[8] = {0x00, 0x00, 0x60, 0x70, 0x00, 0x01, 0x03, 0x70};
+  std::copy(dims, dims + 8, bytes.begin() + 16);
+  std::uint32_t crc = 0xFFFFFFFFu;  // CRC-32 (PNG, ISO 3309)
+  for (std::size_t i = 12; i < 29; ++i) {
+    crc ^= bytes[i];
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+  }
+  crc ^= 0xFFFFFFFFu;
+  for (int k = 0; k < 4; ++k)
+    bytes[29 + static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(crc >> (24 - 8 * k));
+  writeBytes(png, bytes);
+  expectInputError([&] { (void)readScanFile(png); }, "000001.png", "more than any radar scan");
 }

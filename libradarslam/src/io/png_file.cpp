@@ -97,8 +97,18 @@ cv::Mat readGreyPng(const std::filesystem::path& file) {
   const std::vector<unsigned char> bytes = readBytes(file);
   const PngSize size = checkChunks(bytes, file);
   if (size.width <= 0 || size.height <= 0) throw InputError(file.string(), "PNG has an empty image");
-  cv::Mat img =
-      cv::imdecode(cv::_InputArray(bytes.data(), static_cast<int>(bytes.size())), cv::IMREAD_UNCHANGED);
+  // The largest radar scan we know (RAS6) is 400 x 6848 = 2.7 M pixels; a header claiming more
+  // than 64 M is corrupt (and OpenCV would throw cv::Exception above its own 1 G limit).
+  constexpr long long kMaxPixels = 64LL << 20;
+  if (static_cast<long long>(size.width) * size.height > kMaxPixels)
+    throw InputError(file.string(), "PNG header claims " + std::to_string(size.width) + " x " +
+                                        std::to_string(size.height) + " pixels, more than any radar scan");
+  cv::Mat img;
+  try {
+    img = cv::imdecode(cv::_InputArray(bytes.data(), static_cast<int>(bytes.size())), cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw InputError(file.string(), std::string("PNG could not be decoded (") + e.err + ")");
+  }
   if (img.empty()) throw InputError(file.string(), "PNG could not be decoded (corrupt image data)");
   if (img.type() != CV_8UC1)
     throw InputError(file.string(), "expected an 8-bit greyscale PNG, got " + std::to_string(img.channels()) +
