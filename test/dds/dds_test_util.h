@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -32,6 +33,15 @@ namespace radarslam::test {
 inline unsigned testDomainId(unsigned index) {
   if (index >= 20) throw std::logic_error("testDomainId: index must be < 20");
   return 1 + (static_cast<unsigned>(::getpid()) % 10) * 20 + index;
+}
+
+/// Factor applied to every process timeout in these tests: RADARSLAM_TEST_TIME_SCALE (default 1).
+/// The sanitizer stage of CI sets it (ASan makes the localiser ~5x slower); the timeouts only
+/// bound a hang, they never decide a measurement.
+inline double timeScale() {
+  const char* s = std::getenv("RADARSLAM_TEST_TIME_SCALE");
+  const double v = s ? std::atof(s) : 1.0;
+  return v >= 1.0 ? v : 1.0;
 }
 
 inline std::string readText(const std::filesystem::path& p) {
@@ -77,7 +87,8 @@ class Child {
   }
   /// Waits for the exit; returns the exit code (128 + signal if killed), or -1 on timeout.
   int wait(double timeout_s) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s * timeScale());
     while (running()) {
       if (std::chrono::steady_clock::now() > deadline) return -1;
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -89,7 +100,8 @@ class Child {
   std::string err() const { return readText(err_); }
   /// Waits until stderr contains `text` n times (e.g. a status line); false on timeout or exit.
   bool waitForLog(const std::string& text, double timeout_s, int n = 1) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s * timeScale());
     for (;;) {
       const std::string e = err();
       int found = 0;

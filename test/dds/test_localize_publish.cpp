@@ -70,7 +70,7 @@ TEST(LocalizePublish, PublishedPosesEqualTheWrittenPoses) {
        "--domain", std::to_string(dom_id), "--wait-subscribers", "1", "--dds-timeout", "10", "-q"},
       w.tmp.path() / "loc");
   std::vector<dds::PoseWithCovarianceStampedMsg> got;
-  const auto deadline = std::chrono::steady_clock::now() + 60s;
+  const auto deadline = std::chrono::steady_clock::now() + 60s * test::timeScale();
   for (bool exited = false;;) {
     if (auto m = sub.take(200ms)) {
       got.push_back(*m);
@@ -131,7 +131,7 @@ TEST(LocalizePublish, LocalisesScansFromTheScanPublisher) {
                    "1", "--wait-subscribers", "1", "--wait-timeout", "20"},
                   w.tmp.path() / "pub");
   ASSERT_EQ(pub.wait(40), 0) << pub.err();
-  ASSERT_EQ(loc.wait(20), 0) << loc.err();
+  ASSERT_EQ(loc.wait(60), 0) << loc.err();
   const auto side = rows(out.string() + ".csv");
   std::size_t localised = 0;
   for (const auto& r : side) localised += r[3] == "1";
