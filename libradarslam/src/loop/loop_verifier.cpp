@@ -174,7 +174,51 @@ struct Hypothesis {
   std::size_t score = 0;
 };
 
-/// Per rotation, the strongest translation cell of the pair votes (2x2 window sums).
+/// Candidate points bucketed into x strips, each sorted by y: the points within a box around a
+/// query point are a few binary searches away.
+class StripIndex {
+ public:
+  StripIndex(std::vector<Vec2> pts, double strip_width) : inv_w_(1.0 / strip_width) {
+    if (pts.empty()) return;
+    auto strip = [&](const Vec2& v) { return static_cast<long>(std::floor(v.x() * inv_w_)); };
+    std::sort(pts.begin(), pts.end(), [&](const Vec2& a, const Vec2& b) {
+      const long sa = strip(a), sb = strip(b);
+      return sa != sb ? sa < sb : a.y() < b.y();
+    });
+    first_strip_ = strip(pts.front());
+    begin_.assign(static_cast<std::size_t>(strip(pts.back()) - first_strip_ + 2), 0);
+    for (const auto& v : pts) ++begin_[static_cast<std::size_t>(strip(v) - first_strip_ + 1)];
+    for (std::size_t i = 1; i < begin_.size(); ++i) begin_[i] += begin_[i - 1];
+    pts_ = std::move(pts);
+    ys_.reserve(pts_.size());
+    for (const auto& v : pts_) ys_.push_back(v.y());
+  }
+  /// Calls f(point) for every point with |x - cx| <= r and |y - cy| <= r (and possibly a few more).
+  template <class F>
+  void forEachNear(double cx, double cy, double r, F&& f) const {
+    if (pts_.empty()) return;
+    const long lo = std::max(first_strip_, static_cast<long>(std::floor((cx - r) * inv_w_)));
+    const long hi = std::min(first_strip_ + static_cast<long>(begin_.size()) - 2,
+                             static_cast<long>(std::floor((cx + r) * inv_w_)));
+    for (long st = lo; st <= hi; ++st) {
+      const auto b = ys_.begin() + static_cast<long>(begin_[static_cast<std::size_t>(st - first_strip_)]);
+      const auto e = ys_.begin() + static_cast<long>(begin_[static_cast<std::size_t>(st - first_strip_ + 1)]);
+      for (auto it = std::lower_bound(b, e, cy - r); it != e && *it <= cy + r; ++it)
+        f(pts_[static_cast<std::size_t>(it - ys_.begin())]);
+    }
+  }
+
+ private:
+  double inv_w_;
+  long first_strip_ = 0;
+  std::vector<std::size_t> begin_;  // points of strip first_strip_ + i: [begin_[i], begin_[i + 1])
+  std::vector<Vec2> pts_;
+  std::vector<double> ys_;
+};
+
+/// Per rotation, the strongest translation cell of the pair votes (2x2 window sums). A pair votes
+/// only if its translation lies within the window, so each query point visits just the candidate
+/// points in a box of the window's size around it (the exact cell test stays).
 std::vector<Hypothesis> houghHypotheses(const std::vector<Vec2>& q, const std::vector<Vec2>& c,
                                         const LoopVerifierParams& p) {
   const int half = static_cast<int>(std::ceil(p.max_translation_m / p.vote_cell_m));
@@ -183,18 +227,20 @@ std::vector<Hypothesis> houghHypotheses(const std::vector<Vec2>& q, const std::v
   std::vector<Hypothesis> hyps;
   hyps.reserve(static_cast<std::size_t>(p.rotation_steps));
   const double inv_cell = 1.0 / p.vote_cell_m;
+  const double reach = (half + 1) * p.vote_cell_m;  // the window plus a cell: rounding-safe
+  const StripIndex index(c, reach / 4);
   for (int k = 0; k < p.rotation_steps; ++k) {
     const double th = 2 * M_PI * k / p.rotation_steps;
     const double cs = std::cos(th), sn = std::sin(th);
     std::fill(grid.begin(), grid.end(), 0);
     for (const auto& a : q) {
       const double rx = cs * a.x() - sn * a.y(), ry = sn * a.x() + cs * a.y();
-      for (const auto& b : c) {
+      index.forEachNear(rx, ry, reach, [&](const Vec2& b) {
         const int ix = static_cast<int>(std::floor((b.x() - rx) * inv_cell)) + half;
         const int iy = static_cast<int>(std::floor((b.y() - ry) * inv_cell)) + half;
-        if (ix < 0 || iy < 0 || ix >= side || iy >= side) continue;
+        if (ix < 0 || iy < 0 || ix >= side || iy >= side) return;
         ++grid[static_cast<std::size_t>(iy * side + ix)];
-      }
+      });
     }
     Hypothesis h;
     h.pose.th = th;

@@ -2,7 +2,6 @@
 #include "radarslam/loop/m2dp.h"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -79,6 +78,8 @@ M2DPDescriptor computeM2DP(std::span<const RadarPoint> cloud, const M2DPParams& 
   const int l = params.rings, t = params.sectors, p = params.azimuths, q = params.elevations;
   std::vector<double> ring_r(static_cast<std::size_t>(l));
   for (int i = 0; i < l; ++i) ring_r[static_cast<std::size_t>(i)] = max_r * (i + 1) * (i + 1) / double(l * l);
+  std::vector<double> ring_r2(ring_r.size());  // squared: points are binned by squared distance
+  for (std::size_t i = 0; i < ring_r.size(); ++i) ring_r2[i] = ring_r[i] * ring_r[i];
 
   // 4. Signature of each plane = a row of A.
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(p * q, l * t);
@@ -98,8 +99,8 @@ M2DPDescriptor computeM2DP(std::span<const RadarPoint> cloud, const M2DPParams& 
       auto row = A.row(ia * q + ie);
       for (const auto& pt : pts) {
         const double a = pt.dot(u), b = pt.dot(v);
-        const double rho = std::hypot(a, b);
-        int ring = static_cast<int>(std::lower_bound(ring_r.begin(), ring_r.end(), rho) - ring_r.begin());
+        const double rho2 = a * a + b * b;
+        int ring = static_cast<int>(std::lower_bound(ring_r2.begin(), ring_r2.end(), rho2) - ring_r2.begin());
         ring = std::min(ring, l - 1);
         double ang = std::atan2(b, a);
         if (ang < 0) ang += 2 * M_PI;
@@ -109,9 +110,16 @@ M2DPDescriptor computeM2DP(std::span<const RadarPoint> cloud, const M2DPParams& 
     }
   }
 
-  // 5. Descriptor = [u1; v1], sign fixed by sum(v1) >= 0.
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  Eigen::VectorXd u1 = svd.matrixU().col(0), v1 = svd.matrixV().col(0);
+  // 5. Descriptor = [u1; v1], the first singular pair of A, sign fixed by sum(v1) >= 0. u1 is the
+  //    top eigenvector of A A^T (p q x p q, small), v1 = A^T u1 / sigma1: the same vectors as a
+  //    full SVD at a fraction of its cost (only the first pair is used).
+  const Eigen::MatrixXd AAt = A * A.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> top(AAt);
+  Eigen::VectorXd u1 = top.eigenvectors().col(AAt.rows() - 1);  // eigenvalues ascending
+  Eigen::VectorXd v1 = A.transpose() * u1;
+  const double sigma1 = v1.norm();
+  if (!(sigma1 > 1e-12)) return {};
+  v1 /= sigma1;
   if (v1.sum() < 0) u1 = -u1, v1 = -v1;
   M2DPDescriptor d(u1.size() + v1.size());
   d << u1.cast<float>(), v1.cast<float>();
