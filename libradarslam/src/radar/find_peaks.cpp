@@ -25,26 +25,41 @@ struct Scratch {
   std::vector<std::pair<float, float>> stack;  // (value, min since the entry below)
   std::vector<std::uint32_t> priority;
   std::vector<char> removed;
+  std::vector<std::uint32_t> change_at;  // turningPoints: sample indices i with x[i] != x[i - 1]
+  std::vector<std::uint8_t> change_up;   // and whether x rose there
 };
 
+// Two branch-free passes (speckle makes every comparison a coin flip for a branch predictor):
+// first the sample indices where the value changes, with the direction of the change; then a
+// turning point wherever the direction differs from the previous change's.
 template <typename T>
-void turningPoints(std::span<const T> x, std::vector<Extremum>& ext) {
-  ext.clear();
+void turningPoints(std::span<const T> x, Scratch& s) {
+  std::vector<Extremum>& ext = s.ext;
   const auto n = static_cast<std::uint32_t>(x.size());
-  int prev_dir = 0;
-  std::uint32_t run_start = 0;
+  s.change_at.resize(n);
+  s.change_up.resize(n);
+  std::uint32_t k = 0;
   for (std::uint32_t i = 1; i < n; ++i) {
-    if (x[i] == x[i - 1]) continue;  // the run goes on
-    const int dir = x[i] > x[i - 1] ? 1 : -1;
-    const auto v = static_cast<float>(x[i - 1]);
-    if (run_start == 0)
-      ext.push_back({v, 0, i - 1, false});  // first run: never a peak, still a base/blocker
-    else if (prev_dir != dir)
-      ext.push_back({v, run_start, i - 1, prev_dir > 0});  // local max (up then down) or min
-    prev_dir = dir;
-    run_start = i;
+    s.change_at[k] = i;
+    s.change_up[k] = x[i] > x[i - 1];
+    k += x[i] != x[i - 1];
   }
-  ext.push_back({static_cast<float>(x[n - 1]), run_start, n - 1, false});  // last run
+  ext.clear();
+  if (k == 0) {  // constant signal: a single run
+    ext.push_back({static_cast<float>(x[0]), 0, n - 1, false});
+    return;
+  }
+  // A run ends just before each change; it is a turning point when the direction flips there.
+  ext.resize(k + 1);
+  ext[0] = {static_cast<float>(x[0]), 0, s.change_at[0] - 1, false};  // first run: never a peak
+  std::size_t m = 1;
+  for (std::uint32_t j = 1; j < k; ++j) {
+    const std::uint32_t i = s.change_at[j];
+    ext[m] = {static_cast<float>(x[i - 1]), s.change_at[j - 1], i - 1, s.change_up[j - 1] != 0};
+    m += s.change_up[j] != s.change_up[j - 1];  // up then down: local max; down then up: min
+  }
+  ext[m++] = {static_cast<float>(x[n - 1]), s.change_at[k - 1], n - 1, false};  // last run
+  ext.resize(m);
 }
 
 // base[e] = min of the values over (g, e], g = the nearest element before e that is strictly
@@ -69,7 +84,7 @@ void findPeaksImpl(std::span<const T> x, const FindPeaksParams& params, std::vec
   out.clear();
   if (x.size() < 3) return;
   thread_local Scratch s;
-  turningPoints(x, s.ext);
+  turningPoints(x, s);
   const std::size_t m = s.ext.size();
   if (m < 3) return;
 
