@@ -20,32 +20,70 @@ AlignImage prepareAlignImage(const cv::Mat& image8u, const PatchAlignParams& par
 
 namespace {
 
-inline float bilinear(const cv::Mat& m, float x, float y) {
-  const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
-  const float fx = x - x0, fy = y - y0;
-  const float* r0 = m.ptr<float>(y0);
-  const float* r1 = m.ptr<float>(y0 + 1);
-  return (1 - fy) * ((1 - fx) * r0[x0] + fx * r0[x0 + 1]) + fy * ((1 - fx) * r1[x0] + fx * r1[x0 + 1]);
+/// Samples `m` bilinearly on the (2h+1)^2 unit grid centred at `p`, row-major into `out`. Every
+/// sample shares p's fractional offset, so the four weights are computed once.
+void sampleGrid(const cv::Mat& m, cv::Point2f p, int h, float* out) {
+  const int x0 = static_cast<int>(std::floor(p.x)), y0 = static_cast<int>(std::floor(p.y));
+  const float fx = p.x - static_cast<float>(x0), fy = p.y - static_cast<float>(y0);
+  const float w00 = (1 - fx) * (1 - fy), w01 = fx * (1 - fy), w10 = (1 - fx) * fy, w11 = fx * fy;
+  for (int dy = -h; dy <= h; ++dy) {
+    const float* r0 = m.ptr<float>(y0 + dy) + x0;
+    const float* r1 = m.ptr<float>(y0 + dy + 1) + x0;
+    for (int dx = -h; dx <= h; ++dx)
+      *out++ = w00 * r0[dx] + w01 * r0[dx + 1] + w10 * r1[dx] + w11 * r1[dx + 1];
+  }
 }
 
-/// Normalised cross-correlation of the zero-mean template `t` (norm tn) with cur at integer (cx, cy).
-double nccAt(const std::vector<float>& t, double tn, const cv::Mat& cur, int cx, int cy, int r) {
-  const int n = 2 * r + 1;
-  double sum = 0, sum2 = 0, dot = 0;
-  int k = 0;
-  for (int dy = -r; dy <= r; ++dy) {
-    const float* row = cur.ptr<float>(cy + dy) + cx - r;
-    for (int dx = 0; dx < n; ++dx, ++k) {
-      const double v = row[dx];
-      sum += v;
-      sum2 += v * v;
-      dot += v * t[k];
+/// Zero-mean NCC of the template `t` ((2r+1)^2, zero mean, squared norm tn) with `cur` at every
+/// integer offset within s of (cx, cy); returns the best score and offset. Window sums come from
+/// a summed-area table; the dot products accumulate per offset, so no long dependency chains.
+double bestIntegerOffset(const std::vector<float>& t, double tn, const cv::Mat& cur, int cx, int cy, int r,
+                         int s, int& bx, int& by) {
+  const int n = 2 * r + 1, o = 2 * s + 1, w = n + o - 1;  // region w x w around (cx, cy)
+  thread_local std::vector<double> sat, sat2, dot;
+  sat.assign(static_cast<std::size_t>((w + 1) * (w + 1)), 0.0);
+  sat2.assign(sat.size(), 0.0);
+  dot.assign(static_cast<std::size_t>(o * o), 0.0);
+  for (int y = 0; y < w; ++y) {
+    const float* row = cur.ptr<float>(cy - s - r + y) + (cx - s - r);
+    double rs = 0, rs2 = 0;
+    for (int x = 0; x < w; ++x) {
+      rs += row[x];
+      rs2 += static_cast<double>(row[x]) * row[x];
+      const std::size_t i = static_cast<std::size_t>((y + 1) * (w + 1) + x + 1);
+      sat[i] = sat[i - static_cast<std::size_t>(w + 1)] + rs;
+      sat2[i] = sat2[i - static_cast<std::size_t>(w + 1)] + rs2;
     }
   }
+  for (int ty = 0; ty < n; ++ty)
+    for (int tx = 0; tx < n; ++tx) {
+      const double tv = t[static_cast<std::size_t>(ty * n + tx)];
+      for (int oy = 0; oy < o; ++oy) {
+        const float* row = cur.ptr<float>(cy - s - r + ty + oy) + (cx - s - r + tx);
+        double* d = dot.data() + oy * o;
+        for (int ox = 0; ox < o; ++ox) d[ox] += tv * row[ox];
+      }
+    }
   const double cnt = static_cast<double>(n * n);
-  const double var = sum2 - sum * sum / cnt;
-  if (var <= 1e-9 || tn <= 1e-9) return -1.0;
-  return dot / std::sqrt(var * tn);  // t is zero-mean, so sum(t) * mean(cur) vanishes
+  auto rect = [&](const std::vector<double>& a, int x, int y) {  // sum over [x, x+n) x [y, y+n)
+    const auto at = [&](int yy, int xx) { return a[static_cast<std::size_t>(yy * (w + 1) + xx)]; };
+    return at(y + n, x + n) - at(y, x + n) - at(y + n, x) + at(y, x);
+  };
+  double best = -2;
+  for (int oy = 0; oy < o; ++oy)
+    for (int ox = 0; ox < o; ++ox) {
+      const double sum = rect(sat, ox, oy), var = rect(sat2, ox, oy) - sum * sum / cnt;
+      // t is zero-mean, so sum(t) * mean(cur) vanishes from the dot product.
+      const double c = (var <= 1e-9 || tn <= 1e-9)
+                           ? -1.0
+                           : dot[static_cast<std::size_t>(oy * o + ox)] / std::sqrt(var * tn);
+      if (c > best) {
+        best = c;
+        bx = ox - s;
+        by = oy - s;
+      }
+    }
+  return best;
 }
 
 }  // namespace
@@ -63,12 +101,14 @@ PatchAlignResult alignPatch(const AlignImage& ref, cv::Point2f ref_pt, const Ali
   };
   if (!inside(ref.smooth, rx, ry) || !inside(cur.smooth, cx, cy)) return out;
 
-  // Template sampled at the sub-pixel reference keypoint.
-  const int n = 2 * r + 1;
-  std::vector<float> t(static_cast<std::size_t>(n * n));
+  // Template sampled at the sub-pixel reference keypoint, with a one-pixel border for gradients.
+  const int n = 2 * r + 1, ne = n + 2;
+  std::vector<float> ext(static_cast<std::size_t>(ne * ne)), t(static_cast<std::size_t>(n * n));
+  sampleGrid(ref.smooth, ref_pt, r + 1, ext.data());
+  auto ext_at = [&](int y, int x) { return ext[static_cast<std::size_t>((y + 1) * ne + x + 1)]; };
   double mean = 0;
-  for (int dy = -r, k = 0; dy <= r; ++dy)
-    for (int dx = -r; dx <= r; ++dx, ++k) mean += t[k] = bilinear(ref.smooth, ref_pt.x + dx, ref_pt.y + dy);
+  for (int y = 0, k = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x, ++k) mean += t[static_cast<std::size_t>(k)] = ext_at(y, x);
   mean /= n * n;
   double tn = 0;
   for (float& v : t) {
@@ -77,17 +117,8 @@ PatchAlignResult alignPatch(const AlignImage& ref, cv::Point2f ref_pt, const Ali
   }
 
   // 1. Exhaustive integer search.
-  double best = -2;
   int bx = 0, by = 0;
-  for (int oy = -s; oy <= s; ++oy)
-    for (int ox = -s; ox <= s; ++ox) {
-      const double c = nccAt(t, tn, cur.smooth, cx + ox, cy + oy, r);
-      if (c > best) {
-        best = c;
-        bx = ox;
-        by = oy;
-      }
-    }
+  const double best = bestIntegerOffset(t, tn, cur.smooth, cx, cy, r, s, bx, by);
   out.ncc = best;
   if (best < params.min_ncc) return out;
 
@@ -95,12 +126,11 @@ PatchAlignResult alignPatch(const AlignImage& ref, cv::Point2f ref_pt, const Ali
   //    gradients and Hessian computed once), on zero-mean, contrast-matched patches.
   std::vector<float> tgx(t.size()), tgy(t.size());
   double h00 = 0, h01 = 0, h11 = 0;
-  for (int dy = -r, k = 0; dy <= r; ++dy)
-    for (int dx = -r; dx <= r; ++dx, ++k) {
+  for (int y = 0, k = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x, ++k) {
       // Template gradient by central differences (only the template's pixels need one).
-      const float x = ref_pt.x + dx, y = ref_pt.y + dy;
-      tgx[k] = 0.5f * (bilinear(ref.smooth, x + 1, y) - bilinear(ref.smooth, x - 1, y));
-      tgy[k] = 0.5f * (bilinear(ref.smooth, x, y + 1) - bilinear(ref.smooth, x, y - 1));
+      tgx[k] = 0.5f * (ext_at(y, x + 1) - ext_at(y, x - 1));
+      tgy[k] = 0.5f * (ext_at(y + 1, x) - ext_at(y - 1, x));
       h00 += static_cast<double>(tgx[k]) * tgx[k];
       h01 += static_cast<double>(tgx[k]) * tgy[k];
       h11 += static_cast<double>(tgy[k]) * tgy[k];
@@ -109,9 +139,9 @@ PatchAlignResult alignPatch(const AlignImage& ref, cv::Point2f ref_pt, const Ali
   float px = static_cast<float>(cx + bx), py = static_cast<float>(cy + by);
   std::vector<float> cur_patch(t.size());
   for (int it = 0; it < params.lk_iterations && det > 1e-9; ++it) {
+    sampleGrid(cur.smooth, {px, py}, r, cur_patch.data());
     double cm = 0;
-    for (int dy = -r, k = 0; dy <= r; ++dy)
-      for (int dx = -r; dx <= r; ++dx, ++k) cm += cur_patch[k] = bilinear(cur.smooth, px + dx, py + dy);
+    for (float v : cur_patch) cm += v;
     cm /= n * n;
     double cn = 0;
     for (float v : cur_patch) cn += (v - cm) * (v - cm);
