@@ -33,6 +33,7 @@
 
 #include "cli_common.h"
 #include "command.h"
+#include "dataset_config.h"
 #include "localize_dds.h"
 
 namespace radarslam::cli {
@@ -40,45 +41,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-// The same default-config lookup as `radarslam odometry` (cmd_odometry.cpp).
-std::string sensorConfigName(DatasetKind kind) {
-  switch (kind) {
-    case DatasetKind::Oxford:
-      return "oxford.yaml";
-    case DatasetKind::MulRanOxfordForm:
-    case DatasetKind::MulRanPolar:
-      return "mulran.yaml";
-    case DatasetKind::Boreas:
-      return "boreas.yaml";
-    case DatasetKind::Radiate:
-      return "radiate.yaml";
-    case DatasetKind::Rawlog:
-      return "";
-  }
-  return "";
-}
-
-std::optional<fs::path> findConfig(const std::string& name) {
-  if (name.empty()) return std::nullopt;
-  if (const char* env = std::getenv("RADARSLAM_CONFIG_DIR")) {
-    if (fs::exists(fs::path(env) / name)) return fs::path(env) / name;
-  }
-  std::error_code ec;
-  fs::path dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
-  for (int up = 0; up < 5 && !ec && !dir.empty(); ++up, dir = dir.parent_path()) {
-    if (fs::exists(dir / "config" / name)) return dir / "config" / name;
-    if (dir == dir.parent_path()) break;
-  }
-  return std::nullopt;
-}
-
-std::string clockText(double s) {
-  char buf[32];
-  const long t = static_cast<long>(s + 0.5);
-  std::snprintf(buf, sizeof buf, "%ld:%02ld", t / 60, t % 60);
-  return buf;
-}
 
 double median(std::vector<double> v) {
   if (v.empty()) return NAN;
@@ -239,14 +201,14 @@ int runLocalize(int argc, char** argv) {
       files.emplace_back(config_arg.getValue());
     } else {
       const std::string sensor_yaml =
-          reader ? sensorConfigName(reader->kind())
+          reader ? defaultConfigName(reader->kind())
                  : (sensor_arg.getValue().empty() ? std::string() : sensor_arg.getValue() + ".yaml");
-      if (auto f = findConfig(sensor_yaml)) {
+      if (auto f = findConfigFile(sensor_yaml)) {
         files.push_back(*f);
       } else if (!reader && !sensor_yaml.empty()) {
         throw InputError(where, "--sensor " + sensor_arg.getValue() + ": no config/" + sensor_yaml);
       }
-      if (auto f = findConfig("localization.yaml")) files.push_back(*f);
+      if (auto f = findConfigFile("localization.yaml")) files.push_back(*f);
     }
     for (const auto& f : files) {
       const YamlParams yaml = YamlParams::fromFile(f.string());

@@ -26,7 +26,10 @@ std::string defaultConfigName(DatasetKind kind) {
 
 std::optional<fs::path> findConfig(const std::string& explicit_path, DatasetKind kind) {
   if (!explicit_path.empty()) return fs::path(explicit_path);
-  const std::string name = defaultConfigName(kind);
+  return findConfigFile(defaultConfigName(kind));
+}
+
+std::optional<fs::path> findConfigFile(const std::string& name) {
   if (name.empty()) return std::nullopt;
   if (const char* env = std::getenv("RADARSLAM_CONFIG_DIR")) {
     if (fs::exists(fs::path(env) / name)) return fs::path(env) / name;

@@ -17,6 +17,9 @@ std::string defaultConfigName(DatasetKind kind);
 /// trees live inside the source tree), else none (built-in defaults).
 std::optional<std::filesystem::path> findConfig(const std::string& explicit_path, DatasetKind kind);
 
+/// config/<name> found as findConfig finds a default (none for an empty name or no such file).
+std::optional<std::filesystem::path> findConfigFile(const std::string& name);
+
 /// "m:ss"
 std::string clockText(double seconds);
 

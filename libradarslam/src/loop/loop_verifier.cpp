@@ -12,11 +12,11 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <nanoflann.hpp>
 #include <vector>
 
 #include "radarslam/core/errors.h"
 #include "radarslam/core/yaml_params.h"
+#include "radarslam/loop/point_index_2d.h"
 
 namespace radarslam {
 
@@ -54,35 +54,6 @@ void loadParams(const YamlParams& yaml, LoopVerifierParams& p) {
 namespace {
 
 using Vec2 = Eigen::Vector2d;
-
-/// nanoflann kd-tree over 2D points.
-struct Cloud2D {
-  std::vector<Vec2> pts;
-  std::size_t kdtree_get_point_count() const { return pts.size(); }
-  double kdtree_get_pt(std::size_t i, std::size_t d) const { return pts[i][static_cast<int>(d)]; }
-  template <class BBOX>
-  bool kdtree_get_bbox(BBOX&) const {
-    return false;
-  }
-};
-using Tree2D = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud2D>, Cloud2D, 2,
-                                                   std::uint32_t>;
-
-struct Indexed {
-  Cloud2D cloud;
-  Tree2D tree;
-  explicit Indexed(std::vector<Vec2> p)
-      : cloud{std::move(p)}, tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
-    tree.buildIndex();
-  }
-  /// Squared distance to the nearest point and its index.
-  std::pair<double, std::uint32_t> nearest(const Vec2& q) const {
-    std::uint32_t idx = 0;
-    double d2 = 0;
-    tree.knnSearch(q.data(), 1, &idx, &d2);
-    return {d2, idx};
-  }
-};
 
 struct Pose {
   double x = 0, y = 0, th = 0;
@@ -145,7 +116,7 @@ Pose fitRigid(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
 }
 
 /// Short point-to-point ICP of `q` onto `c` from `pose`, gates shrinking to `gate`.
-Pose quickIcp(const std::vector<Vec2>& q, const Indexed& c, Pose pose, double gate) {
+Pose quickIcp(const std::vector<Vec2>& q, const PointIndex2D& c, Pose pose, double gate) {
   std::vector<Vec2> a, b;
   for (int it = 0; it < 12; ++it) {
     const double g = gate * std::max(1.0, 3.0 - 0.25 * it);
@@ -153,7 +124,7 @@ Pose quickIcp(const std::vector<Vec2>& q, const Indexed& c, Pose pose, double ga
     for (const auto& p : q) {
       const Vec2 tp = pose.apply(p);
       const auto [d2, idx] = c.nearest(tp);
-      if (d2 < g * g) a.push_back(p), b.push_back(c.cloud.pts[idx]);
+      if (d2 < g * g) a.push_back(p), b.push_back(c.points()[idx]);
     }
     if (a.size() < 3) break;
     pose = fitRigid(a, b);
@@ -161,7 +132,7 @@ Pose quickIcp(const std::vector<Vec2>& q, const Indexed& c, Pose pose, double ga
   return pose;
 }
 
-std::size_t consensus(const std::vector<Vec2>& q, const Indexed& c, const Pose& pose, double gate) {
+std::size_t consensus(const std::vector<Vec2>& q, const PointIndex2D& c, const Pose& pose, double gate) {
   std::size_t n = 0;
   for (const auto& p : q)
     if (c.nearest(pose.apply(p)).first < gate * gate) ++n;
@@ -285,8 +256,8 @@ LoopVerification verifyLoop(std::span<const RadarPoint> query, std::span<const R
   }
   // 1. Global search on thinned clouds.
   const std::vector<Vec2> qs = thin(query, params.voxel_m, params.max_search_points);
-  const Indexed cs(thin(candidate, params.voxel_m, params.max_search_points));
-  std::vector<Hypothesis> all = houghHypotheses(qs, cs.cloud.pts, params);
+  const PointIndex2D cs(thin(candidate, params.voxel_m, params.max_search_points));
+  std::vector<Hypothesis> all = houghHypotheses(qs, cs.points(), params);
   std::stable_sort(all.begin(), all.end(),
                    [](const Hypothesis& a, const Hypothesis& b) { return a.votes > b.votes; });
   std::vector<Hypothesis> picked;
@@ -323,7 +294,7 @@ LoopVerification verifyLoop(std::span<const RadarPoint> query, std::span<const R
   out.relative_pose = {rel.x(), rel.y(), rel.phi()};
 
   // 4. Acceptance on the full clouds.
-  const Indexed cfull(toVec(candidate));
+  const PointIndex2D cfull(toVec(candidate));
   Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
   double sum2 = 0;
   std::array<bool, 8> sectors{};

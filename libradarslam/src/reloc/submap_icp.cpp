@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <nanoflann.hpp>
 #include <unordered_map>
 
 #include "radarslam/core/errors.h"
 #include "radarslam/core/yaml_params.h"
+#include "radarslam/loop/point_index_2d.h"
 
 namespace radarslam {
 
@@ -48,18 +48,6 @@ void loadParams(const YamlParams& yaml, IcpParams& p) {
 namespace {
 
 using Vec2 = Eigen::Vector2d;
-
-struct Cloud2D {
-  std::vector<Vec2> pts;
-  std::size_t kdtree_get_point_count() const { return pts.size(); }
-  double kdtree_get_pt(std::size_t i, std::size_t d) const { return pts[i][static_cast<int>(d)]; }
-  template <class BBOX>
-  bool kdtree_get_bbox(BBOX&) const {
-    return false;
-  }
-};
-using Tree2D = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud2D>, Cloud2D, 2,
-                                                   std::uint32_t>;
 
 std::int64_t voxelKey(double x, double y, double voxel) {
   const auto ix = static_cast<std::int64_t>(std::floor(x / voxel));
@@ -121,32 +109,28 @@ std::vector<Vec2> thinScan(std::span<const RadarPoint> c, double voxel, std::siz
 }  // namespace
 
 struct LocalSubmap::Impl {
-  Cloud2D cloud;
-  Tree2D tree;
+  PointIndex2D index;
   // Lazily computed line normals: 0 = not computed, 1 = line (normal valid), 2 = not a line.
   mutable std::vector<std::uint8_t> normal_state;
   mutable std::vector<Vec2> normal;
-  explicit Impl(std::vector<Vec2> p)
-      : cloud{std::move(p)}, tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
-    tree.buildIndex();
-    normal_state.assign(cloud.pts.size(), 0);
-    normal.resize(cloud.pts.size());
+  explicit Impl(std::vector<Vec2> p) : index(std::move(p)) {
+    normal_state.assign(index.size(), 0);
+    normal.resize(index.size());
   }
 
   /// The line normal at submap point i, or nullptr if its neighbourhood is not linear.
   const Vec2* lineNormal(std::uint32_t i, const IcpParams& params) const {
     if (normal_state[i] == 0) {
       std::vector<std::pair<std::uint32_t, double>> nb;
-      const double r2 = params.normal_radius_m * params.normal_radius_m;
-      tree.radiusSearch(cloud.pts[i].data(), r2, nb, nanoflann::SearchParams(32, 0, false));
+      index.within(index.points()[i], params.normal_radius_m, nb);
       normal_state[i] = 2;
       if (nb.size() >= 4) {
         Vec2 mean = Vec2::Zero();
-        for (const auto& [j, d] : nb) mean += cloud.pts[j];
+        for (const auto& [j, d] : nb) mean += index.points()[j];
         mean /= static_cast<double>(nb.size());
         Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
         for (const auto& [j, d] : nb) {
-          const Vec2 e = cloud.pts[j] - mean;
+          const Vec2 e = index.points()[j] - mean;
           cov += e * e.transpose();
         }
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
@@ -166,7 +150,7 @@ LocalSubmap::~LocalSubmap() = default;
 LocalSubmap::LocalSubmap(LocalSubmap&&) noexcept = default;
 LocalSubmap& LocalSubmap::operator=(LocalSubmap&&) noexcept = default;
 
-std::size_t LocalSubmap::size() const { return impl_ ? impl_->cloud.pts.size() : 0; }
+std::size_t LocalSubmap::size() const { return impl_ ? impl_->index.size() : 0; }
 
 LocalSubmap LocalSubmap::build(const KeyframeMap& map, double cx, double cy, const SubmapParams& params) {
   std::vector<Vec2> pts;
@@ -202,7 +186,7 @@ IcpResult LocalSubmap::registerScan(std::span<const RadarPoint> scan, const mrpt
   res.pose = initial;
   const std::vector<Vec2> src = thinScan(scan, params.scan_voxel_m, params.max_scan_points);
   res.scan_points = src.size();
-  if (!impl_ || impl_->cloud.pts.size() < 3 || src.size() < 3) return res;
+  if (!impl_ || impl_->index.size() < 3 || src.size() < 3) return res;
 
   double x = initial.x, y = initial.y, th = initial.phi;
   Eigen::Matrix3d H;
@@ -226,13 +210,11 @@ IcpResult LocalSubmap::registerScan(std::span<const RadarPoint> scan, const mrpt
     for (const Vec2& p : src) {
       const Vec2 rp(c * p.x() - s * p.y(), s * p.x() + c * p.y());
       const Vec2 q(rp.x() + x, rp.y() + y);
-      std::uint32_t idx = 0;
-      double d2 = 0;
-      impl_->tree.knnSearch(q.data(), 1, &idx, &d2);
+      const auto [d2, idx] = impl_->index.nearest(q);
       if (d2 > gate2) continue;
       ++inliers;
       sum_in_d2 += d2;
-      const Vec2 e = q - impl_->cloud.pts[idx];
+      const Vec2 e = q - impl_->index.points()[idx];
       const Vec2 dth(-rp.y(), rp.x());
       if (const Vec2* n = impl_->lineNormal(idx, params)) {
         const double r = n->dot(e);
