@@ -57,7 +57,8 @@ void BM_VerifyCandidate(benchmark::State& state) {
 BENCHMARK(BM_VerifyCandidate)->Arg(3)->Arg(8)->Unit(benchmark::kMillisecond);
 
 // 1000 nodes on 10 laps of a 100-node square with yaw drift, a loop edge per lap.
-void BM_PoseGraph1000Nodes(benchmark::State& state) {
+void BM_PoseGraph(benchmark::State& state) {  // Arg: nodes (a 2 m grid walk, a loop edge every 100)
+  const auto nodes = static_cast<std::size_t>(state.range(0));
   std::size_t rejected = 0;
   for (auto _ : state) {
     state.PauseTiming();
@@ -67,7 +68,7 @@ void BM_PoseGraph1000Nodes(benchmark::State& state) {
     const Eigen::Matrix3d info = Eigen::Vector3d(400, 400, 10000).asDiagonal();
     mrpt::math::TPose2D est{0, 0, 0};
     g.addNode(est);
-    for (std::size_t i = 1; i < 1000; ++i) {
+    for (std::size_t i = 1; i < nodes; ++i) {
       const mrpt::math::TPose2D z{2.0 + n(rng), n(rng), (i % 25 == 0 ? M_PI / 2 : 0.0) + 0.001 + n(rng)};
       const double c = std::cos(est.phi), s = std::sin(est.phi);
       est = {est.x + c * z.x - s * z.y, est.y + s * z.x + c * z.y, est.phi + z.phi};
@@ -80,7 +81,7 @@ void BM_PoseGraph1000Nodes(benchmark::State& state) {
   }
   state.counters["rejected"] = static_cast<double>(rejected) / static_cast<double>(state.iterations());
 }
-BENCHMARK(BM_PoseGraph1000Nodes)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PoseGraph)->Arg(1000)->Arg(4000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace radarslam

@@ -1,12 +1,12 @@
-// SE(2) pose graph on MRPT's SPA Levenberg-Marquardt with a chi^2 loop-edge check (paper
-// Sec. III-D); see backend/pose_graph.h. The only file that includes MRPT's graph headers.
+// SE(2) pose graph, Levenberg-Marquardt with sparse Cholesky (Ceres), with a chi^2 loop-edge check
+// (paper Sec. III-D); see backend/pose_graph.h.
 #include "radarslam/backend/pose_graph.h"
 
-#include <mrpt/graphs/CNetworkOfPoses.h>
-#include <mrpt/graphslam/levmarq.h>
+#include <ceres/ceres.h>
 #include <mrpt/poses/CPose2D.h>
 
 #include <Eigen/Dense>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -70,40 +70,62 @@ double PoseGraph::totalChi2() const {
   return s;
 }
 
+namespace {
+
+// Edge residual of eq. (5)-style SE(2) constraints: r = z^-1 (+) (a^-1 (+) b) as (x, y, wrapped
+// phi), whitened by the upper Cholesky factor of the information (r^T Omega r = |L^T r|^2).
+struct EdgeCost {
+  EdgeCost(const mrpt::math::TPose2D& z, const Eigen::Matrix3d& information)
+      : zx(z.x), zy(z.y), zphi(z.phi), sqrt_info(information.llt().matrixU()) {}
+  template <typename T>
+  bool operator()(const T* a, const T* b, T* out) const {
+    using std::cos, std::sin;
+    // a^-1 (+) b
+    const T ca = cos(a[2]), sa = sin(a[2]);
+    const T dx = b[0] - a[0], dy = b[1] - a[1];
+    const T rx = ca * dx + sa * dy, ry = -sa * dx + ca * dy, rphi = b[2] - a[2];
+    // z^-1 (+) that
+    const T cz = T(std::cos(zphi)), sz = T(std::sin(zphi));
+    const T ex = cz * (rx - T(zx)) + sz * (ry - T(zy));
+    const T ey = -sz * (rx - T(zx)) + cz * (ry - T(zy));
+    T ephi = rphi - T(zphi);
+    ephi -= T(2 * M_PI) * ceres::floor((ephi + T(M_PI)) / T(2 * M_PI));  // wrap to [-pi, pi)
+    const Eigen::Matrix<T, 3, 1> e(ex, ey, ephi);
+    Eigen::Map<Eigen::Matrix<T, 3, 1>> r(out);
+    r = sqrt_info.cast<T>() * e;
+    return true;
+  }
+  double zx, zy, zphi;
+  Eigen::Matrix3d sqrt_info;
+};
+
+}  // namespace
+
 PoseGraphReport PoseGraph::optimize() {
   PoseGraphReport report;
   report.chi2_initial = totalChi2();
   const std::vector<mrpt::math::TPose2D> initial = poses_;
   for (int pass = 0;; ++pass) {
-    mrpt::graphs::CNetworkOfPoses2DInf graph;
-    graph.root = 0;
-    for (std::size_t i = 0; i < initial.size(); ++i)
-      graph.nodes[static_cast<mrpt::graphs::TNodeID>(i)] = mrpt::poses::CPose2D(initial[i]);
+    std::vector<std::array<double, 3>> x(initial.size());
+    for (std::size_t i = 0; i < initial.size(); ++i) x[i] = {initial[i].x, initial[i].y, initial[i].phi};
+    ceres::Problem problem;
     for (const auto& e : edges_) {
       if (!e.active) continue;
-      mrpt::poses::CPosePDFGaussianInf z;
-      z.mean = mrpt::poses::CPose2D(e.relative);
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) z.cov_inv(r, c) = e.information(r, c);
-      graph.insertEdge(static_cast<mrpt::graphs::TNodeID>(e.from), static_cast<mrpt::graphs::TNodeID>(e.to),
-                       z);
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<EdgeCost, 3, 3, 3>(new EdgeCost(e.relative, e.information)),
+          nullptr, x[e.from].data(), x[e.to].data());
     }
-    mrpt::graphslam::TResultInfoSpaLevMarq info{};
-    mrpt::containers::yaml extra;
-    extra["max_iterations"] = static_cast<uint64_t>(params_.max_iterations);
-    // MRPT's LM can stop early from a poor initial estimate (measured: a 1000-node, 10-lap graph
-    // stops at chi^2 1002; restarting from its result reaches 258). Restart until chi^2 settles.
-    double chi2 = std::numeric_limits<double>::infinity();
-    for (int restart = 0; restart < 5; ++restart) {
-      mrpt::graphslam::optimize_graph_spa_levmarq(graph, info, nullptr, extra);
-      report.iterations += info.num_iters;
-      const double now = graph.chi2();
-      const bool settled = !(now < chi2 * (1.0 - 1e-3));
-      chi2 = now;
-      if (settled) break;
-    }
+    if (!x.empty() && problem.HasParameterBlock(x[0].data())) problem.SetParameterBlockConstant(x[0].data());
+    ceres::Solver::Options options;
+    options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;  // sparse: linear in graph size
+    options.max_num_iterations = params_.max_iterations;
+    options.num_threads = 1;  // deterministic
+    options.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(options, &problem, &summary);
+    report.iterations += summary.iterations.size();
     for (std::size_t i = 0; i < poses_.size(); ++i)
-      poses_[i] = graph.nodes.at(static_cast<mrpt::graphs::TNodeID>(i)).asTPose();
+      poses_[i] = {x[i][0], x[i][1], mrpt::math::wrapToPi(x[i][2])};
 
     // Robust check: the worst loop edge beyond the gate goes, then re-optimise from scratch.
     std::size_t worst = edges_.size();

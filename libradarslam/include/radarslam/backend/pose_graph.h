@@ -1,14 +1,15 @@
 #pragma once
 // The SLAM back end (paper Sec. III-D): keyframe poses, odometry edges and loop-closure edges with
-// information matrices, optimised as an SE(2) pose graph (MRPT CNetworkOfPoses2DInf +
-// optimize_graph_spa_levmarq, i.e. Sparse Pose Adjustment with Levenberg-Marquardt).
+// information matrices, optimised as an SE(2) pose graph: Levenberg-Marquardt with a sparse
+// Cholesky solver (Ceres), i.e. Sparse Pose Adjustment. MRPT's optimize_graph_spa_levmarq was used
+// first; in MRPT 2.5.8 it maps every edge to its nodes by a linear search over a std::set
+// (levmarq.h, find_in_vector), O(edges x nodes) per call: 4.7 s for a 4000-node graph against
+// 0.1 s for 1000 nodes, and the 10 000-scan run spent 83 % of its loop-closing thread there.
 //
 // Robustness: a wrong loop that slipped through verification must not wreck the map. After each
 // optimisation the loop edge with the largest chi^2 (e^T Omega e of its residual) is removed if
 // that chi^2 exceeds loop_chi2_gate, and the graph is re-optimised from the initial estimate;
 // repeated up to max_loop_rejections times. Odometry edges are never removed.
-//
-// MRPT's graph headers stay in pose_graph.cpp (levmarq.h alone costs ~9 s per including file).
 #include <mrpt/math/TPose2D.h>
 #include <Eigen/Core>
 
