@@ -11,28 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
 #include "shared_data.h"
 #include "temp_dir.h"
 
 namespace {
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-Result runCli(const std::string& args, const radarslam::test::TempDir& tmp) {
-  const auto out_file = tmp / "stdout.txt", err_file = tmp / "stderr.txt";
-  const std::string cmd = std::string(RADARSLAM_CLI) + " " + args + " > '" + out_file.string() + "' 2> '" +
-                          err_file.string() + "'";
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream o(out_file), e(err_file);
-  r.out.assign(std::istreambuf_iterator<char>(o), {});
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
-  return r;
-}
+using radarslam::test::runCli;
+using Result = radarslam::test::CliResult;
 
 std::size_t lineCount(const std::string& s) {
   std::size_t n = 0;

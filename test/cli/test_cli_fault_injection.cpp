@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
 #include "radarslam/core/time.h"
 #include "radarslam/io/dataset.h"
 #include "radarslam/io/oxford_writer.h"
@@ -22,26 +23,11 @@
 
 namespace {
 
+using radarslam::test::runCli;
+using Result = radarslam::test::CliResult;
+
 namespace fs = std::filesystem;
 using radarslam::StampNs;
-
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-Result runCli(const std::string& args, const radarslam::test::TempDir& tmp) {
-  const auto out_file = tmp / "stdout.txt", err_file = tmp / "stderr.txt";
-  const std::string cmd = std::string(RADARSLAM_CLI) + " " + args + " > '" + out_file.string() + "' 2> '" +
-                          err_file.string() + "'";
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream o(out_file), e(err_file);
-  r.out.assign(std::istreambuf_iterator<char>(o), {});
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
-  return r;
-}
 
 std::size_t lineCount(const std::string& s) {
   return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));

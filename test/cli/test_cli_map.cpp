@@ -14,6 +14,7 @@
 #include <iterator>
 #include <string>
 
+#include "cli_run.h"
 #include "radarslam/io/dataset.h"
 #include "radarslam/io/trajectory_files.h"
 #include "radarslam/map/map_io.h"
@@ -22,24 +23,8 @@
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-Result run(const std::string& args, const fs::path& dir) {
-  const auto out_file = dir / "stdout.txt", err_file = dir / "stderr.txt";
-  const std::string cmd = std::string(RADARSLAM_CLI) + " " + args + " > '" + out_file.string() + "' 2> '" +
-                          err_file.string() + "'";
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream o(out_file), e(err_file);
-  r.out.assign(std::istreambuf_iterator<char>(o), {});
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
-  return r;
-}
+using Result = radarslam::test::CliResult;
+using radarslam::test::runCli;
 
 /// Two short drives through the same simulated world (traversal 2: other lane, other traffic),
 /// simulated once for the whole suite.
@@ -49,9 +34,9 @@ class CliMap : public ::testing::Test {
     root_ = new fs::path(fs::temp_directory_path() / ("radarslam_cli_map_" + std::to_string(::getpid())));
     fs::create_directories(*root_);
     for (const int t : {1, 2}) {
-      const Result r = run("simulate '" + (*root_ / ("t" + std::to_string(t))).string() +
-                               "' --scans 50 --traversal " + std::to_string(t),
-                           *root_);
+      const Result r = runCli("simulate '" + (*root_ / ("t" + std::to_string(t))).string() +
+                                  "' --scans 50 --traversal " + std::to_string(t),
+                              *root_);
       ASSERT_EQ(r.code, 0) << r.err;
     }
   }
@@ -68,7 +53,8 @@ fs::path* CliMap::root_ = nullptr;
 
 TEST_F(CliMap, WritesALoadableMapWithTrajectoryPreviewAndSummary) {
   const fs::path map = tmp_ / "maps" / "drive";
-  const Result r = run("map '" + data(1).string() + "' -o '" + map.string() + "' --threads 1", tmp_.path());
+  const Result r =
+      runCli("map '" + data(1).string() + "' -o '" + map.string() + "' --threads 1", tmp_.path());
   ASSERT_EQ(r.code, 0) << r.err;
   const radarslam::KeyframeMap m = radarslam::loadMap(map);
   EXPECT_GT(m.keyframes.size(), 20u);
@@ -100,11 +86,11 @@ TEST_F(CliMap, WritesALoadableMapWithTrajectoryPreviewAndSummary) {
 TEST_F(CliMap, OneThreadIsDeterministic) {
   const fs::path a = tmp_ / "a", b = tmp_ / "b";
   ASSERT_EQ(
-      run("map '" + data(1).string() + "' -o '" + a.string() + "' --threads 1 --count 25 -q", tmp_.path())
+      runCli("map '" + data(1).string() + "' -o '" + a.string() + "' --threads 1 --count 25 -q", tmp_.path())
           .code,
       0);
   ASSERT_EQ(
-      run("map '" + data(1).string() + "' -o '" + b.string() + "' --threads 1 --count 25 -q", tmp_.path())
+      runCli("map '" + data(1).string() + "' -o '" + b.string() + "' --threads 1 --count 25 -q", tmp_.path())
           .code,
       0);
   std::ifstream fa(a / "trajectory.tum"), fb(b / "trajectory.tum");
@@ -116,13 +102,13 @@ TEST_F(CliMap, OneThreadIsDeterministic) {
 
 TEST_F(CliMap, ExtendsAMapWithASecondTraversal) {
   const fs::path map = tmp_ / "maps" / "world";
-  ASSERT_EQ(run("map '" + data(1).string() + "' -o '" + map.string() + "' --threads 1 -q", tmp_.path()).code,
-            0);
+  ASSERT_EQ(
+      runCli("map '" + data(1).string() + "' -o '" + map.string() + "' --threads 1 -q", tmp_.path()).code, 0);
   const std::size_t before = radarslam::loadMap(map).keyframes.size();
   // Into the same map directory: the result replaces it atomically.
-  const Result r = run("map '" + data(2).string() + "' --extend '" + map.string() + "' -o '" + map.string() +
-                           "' --threads 1 -q",
-                       tmp_.path());
+  const Result r = runCli("map '" + data(2).string() + "' --extend '" + map.string() + "' -o '" +
+                              map.string() + "' --threads 1 -q",
+                          tmp_.path());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("anchored"), std::string::npos) << r.err;
   const radarslam::KeyframeMap m = radarslam::loadMap(map);
@@ -143,7 +129,7 @@ TEST_F(CliMap, ExtendsAMapWithASecondTraversal) {
 
 TEST_F(CliMap, BadInputGivesOneLineErrors) {
   const auto expectError = [&](const std::string& args, const std::string& needle) {
-    const Result r = run(args, tmp_.path());
+    const Result r = runCli(args, tmp_.path());
     EXPECT_NE(r.code, 0) << args;
     EXPECT_NE(r.err.find(needle), std::string::npos) << args << "\n" << r.err;
     EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 2) << r.err;

@@ -9,6 +9,7 @@
 #include <iterator>
 #include <string>
 
+#include "cli_run.h"
 #include "radarslam/io/dataset.h"
 #include "radarslam/io/trajectory_files.h"
 #include "shared_data.h"
@@ -16,22 +17,10 @@
 
 namespace {
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
+using Result = radarslam::test::CliResult;
 
 Result runOdometry(const std::string& args, const radarslam::test::TempDir& tmp) {
-  const auto out_file = tmp / "stdout.txt", err_file = tmp / "stderr.txt";
-  const std::string cmd = std::string(RADARSLAM_CLI) + " odometry " + args + " > '" + out_file.string() +
-                          "' 2> '" + err_file.string() + "'";
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream o(out_file), e(err_file);
-  r.out.assign(std::istreambuf_iterator<char>(o), {});
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
-  return r;
+  return radarslam::test::runCli("odometry " + args, tmp);
 }
 
 TEST(CliOdometry, TracksOxfordAndEvaluatesAgainstGroundTruth) {

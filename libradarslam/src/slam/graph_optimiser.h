@@ -1,7 +1,7 @@
 #pragma once
 // Pose-graph optimisation (paper Sec. III-D) of the shared state: every keyframe a node, an
 // odometry edge between consecutive keyframes (information from OdometryEdgeParams), every active
-// accepted loop an edge; optimised with backend/pose_graph.h (MRPT SPA + chi^2 loop rejection).
+// accepted loop an edge; optimised with backend/pose_graph.h (Ceres LM + chi^2 loop rejection).
 // Then the map update: keyframes get the optimised poses, map points move with their reference
 // keyframe, keyframes inserted while the optimisation ran follow their predecessor.
 #include "slam_state.h"

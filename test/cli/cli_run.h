@@ -1,0 +1,37 @@
+#pragma once
+// Runs the `radarslam` program (RADARSLAM_CLI) through the shell for the CLI tests, with its
+// stdout and stderr captured in files of a test directory.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "temp_dir.h"
+
+namespace radarslam::test {
+
+struct CliResult {
+  int code = -1;  ///< exit code (-1 if killed by a signal)
+  std::string out, err;
+};
+
+/// `radarslam ARGS` (ARGS shell-quoted by the caller); stdout.txt and stderr.txt go to `dir`.
+inline CliResult runCli(const std::string& args, const std::filesystem::path& dir) {
+  const auto out_file = dir / "stdout.txt", err_file = dir / "stderr.txt";
+  const std::string cmd = std::string(RADARSLAM_CLI) + " " + args + " > '" + out_file.string() + "' 2> '" +
+                          err_file.string() + "'";
+  const int status = std::system(cmd.c_str());
+  CliResult r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream o(out_file), e(err_file);
+  r.out.assign(std::istreambuf_iterator<char>(o), {});
+  r.err.assign(std::istreambuf_iterator<char>(e), {});
+  return r;
+}
+
+inline CliResult runCli(const std::string& args, const TempDir& tmp) { return runCli(args, tmp.path()); }
+
+}  // namespace radarslam::test
