@@ -9,29 +9,15 @@
 #include <iterator>
 #include <string>
 
+#include "cli_run.h"
 #include "radarslam/io/dataset.h"
 #include "shared_data.h"
 #include "temp_dir.h"
 
 namespace {
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
-
-CliRun runRadarslam(const std::string& args, const radarslam::test::TempDir& tmp) {
-  const auto out_file = tmp / "io_stdout.txt", err_file = tmp / "io_stderr.txt";
-  const std::string cmd = std::string(RADARSLAM_CLI) + " " + args + " > '" + out_file.string() + "' 2> '" +
-                          err_file.string() + "'";
-  const int status = std::system(cmd.c_str());
-  CliRun r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream out(out_file), err(err_file);
-  r.out.assign(std::istreambuf_iterator<char>(out), {});
-  r.err.assign(std::istreambuf_iterator<char>(err), {});
-  return r;
-}
+using CliRun = radarslam::test::CliResult;
+using radarslam::test::runCli;
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
@@ -40,7 +26,7 @@ bool contains(const std::string& s, const std::string& part) { return s.find(par
 TEST(CliInfo, ReportsTheOxfordTinySample) {
   RADARSLAM_REQUIRE_REAL_DATA(dir, "oxford_radar_robotcar_tiny");
   radarslam::test::TempDir tmp;
-  const CliRun r = runRadarslam("info '" + dir.string() + "'", tmp);
+  const CliRun r = runCli("info '" + dir.string() + "'", tmp);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "dataset:       Oxford Radar RobotCar")) << r.out;
   EXPECT_TRUE(contains(r.out, "scans:         11\n")) << r.out;
@@ -54,21 +40,20 @@ TEST(CliInfo, ReportsTheOxfordTinySample) {
 TEST(CliInfo, HelpAndErrors) {
   radarslam::test::TempDir tmp;
   for (const char* cmd : {"info --help", "convert --help"}) {
-    const CliRun r = runRadarslam(cmd, tmp);
+    const CliRun r = runCli(cmd, tmp);
     EXPECT_EQ(r.code, 0) << cmd;
     EXPECT_TRUE(contains(r.out, "USAGE")) << r.out;
   }
-  const CliRun empty =
-      runRadarslam("info '" + tmp.path().string() + "'", tmp);  // holds only our capture files
+  const CliRun empty = runCli("info '" + tmp.path().string() + "'", tmp);  // holds only our capture files
   EXPECT_EQ(empty.code, 1);
   EXPECT_TRUE(contains(empty.err, "unknown dataset layout")) << empty.err;
   std::filesystem::create_directories(tmp / "empty");
-  const CliRun r = runRadarslam("info '" + (tmp / "empty").string() + "'", tmp);
+  const CliRun r = runCli("info '" + (tmp / "empty").string() + "'", tmp);
   EXPECT_EQ(r.code, 1);
   EXPECT_TRUE(contains(r.err, "radarslam: error: " + (tmp / "empty").string() + ": empty directory"))
       << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  const CliRun bad_opt = runRadarslam("info --bogus x", tmp);
+  const CliRun bad_opt = runCli("info --bogus x", tmp);
   EXPECT_NE(bad_opt.code, 0);
 }
 
@@ -76,13 +61,13 @@ TEST(CliConvert, OxfordToRawlogAndBack) {
   RADARSLAM_REQUIRE_REAL_DATA(dir, "oxford_radar_robotcar_tiny");
   radarslam::test::TempDir tmp;
   const auto out = tmp / "tiny.rawlog";
-  const CliRun r = runRadarslam("convert '" + dir.string() + "' '" + out.string() + "'", tmp);
+  const CliRun r = runCli("convert '" + dir.string() + "' '" + out.string() + "'", tmp);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(contains(r.err, "scans/s")) << r.err;
   EXPECT_TRUE(contains(r.err, "ETA")) << r.err;
   EXPECT_TRUE(contains(r.out, "converted 11 scans")) << r.out;
   EXPECT_TRUE(contains(r.out, "skipped 0 bad scan(s)")) << r.out;
-  const CliRun info = runRadarslam("info '" + out.string() + "'", tmp);
+  const CliRun info = runCli("info '" + out.string() + "'", tmp);
   ASSERT_EQ(info.code, 0) << info.err;
   EXPECT_TRUE(contains(info.out, "dataset:       MRPT rawlog")) << info.out;
   EXPECT_TRUE(contains(info.out, "scans:         11\n")) << info.out;
@@ -106,13 +91,13 @@ TEST(CliConvert, BadScanFailsUnlessSkipped) {
   std::filesystem::resize_file(bad, 5000);
   const auto out = tmp / "o.rawlog";
 
-  const CliRun strict = runRadarslam("convert '" + copy.string() + "' '" + out.string() + "'", tmp);
+  const CliRun strict = runCli("convert '" + copy.string() + "' '" + out.string() + "'", tmp);
   EXPECT_EQ(strict.code, 1);
   EXPECT_TRUE(contains(strict.err, "radarslam: error: " + bad.string() + ": truncated PNG")) << strict.err;
   EXPECT_FALSE(std::filesystem::exists(out)) << "a failed conversion must not leave an output file";
 
   const CliRun lenient =
-      runRadarslam("convert --skip-bad-scans '" + copy.string() + "' '" + out.string() + "'", tmp);
+      runCli("convert --skip-bad-scans '" + copy.string() + "' '" + out.string() + "'", tmp);
   ASSERT_EQ(lenient.code, 0) << lenient.err;
   EXPECT_TRUE(contains(lenient.out, "converted 10 scans")) << lenient.out;
   EXPECT_TRUE(contains(lenient.out, "skipped 1 bad scan(s)")) << lenient.out;
@@ -120,11 +105,10 @@ TEST(CliConvert, BadScanFailsUnlessSkipped) {
   EXPECT_TRUE(contains(lenient.out + lenient.err, "skipping bad scan 4")) << lenient.out << lenient.err;
   EXPECT_EQ(radarslam::openDataset(out)->size(), 10u);
 
-  const CliRun check = runRadarslam("info --check --skip-bad-scans '" + copy.string() + "'", tmp);
+  const CliRun check = runCli("info --check --skip-bad-scans '" + copy.string() + "'", tmp);
   ASSERT_EQ(check.code, 0) << check.err;
   EXPECT_TRUE(contains(check.out, "check:         10 good scans, 1 bad (skipped)")) << check.out;
-  const CliRun wrong_ext =
-      runRadarslam("convert '" + copy.string() + "' '" + (tmp / "x.txt").string() + "'", tmp);
+  const CliRun wrong_ext = runCli("convert '" + copy.string() + "' '" + (tmp / "x.txt").string() + "'", tmp);
   EXPECT_EQ(wrong_ext.code, 1);
   EXPECT_TRUE(contains(wrong_ext.err, "output must be a .rawlog file")) << wrong_ext.err;
 }
