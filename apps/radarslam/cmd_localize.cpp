@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <functional>
 #include <future>
 #include <iostream>
 #include <optional>
@@ -22,6 +23,7 @@
 #include <radarslam/core/errors.h>
 #include <radarslam/core/log.h>
 #include <radarslam/core/yaml_params.h>
+#include <radarslam/eval/alignment.h>
 #include <radarslam/frontend/odometry.h>
 #include <radarslam/io/dataset.h>
 #include <radarslam/io/trajectory_files.h>
@@ -52,13 +54,36 @@ double median(std::vector<double> v) {
 /// Ground truth of the dataset's scans expressed in the map frame, and how it was obtained. The
 /// dataset readers give ground truth in the dataset's own frame (e.g. Oxford: chained from the first
 /// scan), which is not the map's frame unless the map was built from the same dataset. When both
-/// the map's source dataset and DIR have absolute truth (gt/poses.tum, written by the simulator),
-/// the frames are tied exactly through the map's first keyframe; otherwise the dataset's truth is
-/// used as is if the map comes from DIR itself, else the frames are not comparable.
+/// the map's source dataset and DIR have absolute truth (gt/poses.tum, written by the simulator), or
+/// the map was built from DIR itself, the map frame is fitted to the truth at the map's keyframes
+/// (least-squares SE(2), eval::alignSE2): exact for a map-synth map, the best-fit frame for a SLAM
+/// map (whose own error then shows as the fit residual); otherwise the frames are not comparable.
 struct MapFrameTruth {
   Trajectory truth;  ///< in the map frame
   std::string how;
 };
+
+/// T_truth_map fitted to the keyframes with truth; nullopt if none has any.
+std::optional<std::pair<mrpt::poses::CPose2D, std::string>> fitMapFrame(
+    const KeyframeMap& map, const std::function<std::optional<mrpt::math::TPose2D>(StampNs)>& truth_at) {
+  std::vector<mrpt::math::TPoint2D> in_map, in_truth;
+  for (const auto& kf : map.keyframes)
+    if (const auto g = truth_at(kf.stamp_ns)) {
+      in_map.emplace_back(kf.pose.x, kf.pose.y);
+      in_truth.emplace_back(g->x, g->y);
+    }
+  if (in_map.empty()) return std::nullopt;
+  const mrpt::poses::CPose2D t(eval::alignSE2(in_map, in_truth));
+  double ss = 0;
+  for (std::size_t i = 0; i < in_map.size(); ++i) {
+    const auto p = t.composePoint(in_map[i]);
+    ss += (p.x - in_truth[i].x) * (p.x - in_truth[i].x) + (p.y - in_truth[i].y) * (p.y - in_truth[i].y);
+  }
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "map frame fitted to %zu keyframes, residual RMS %.2f m", in_map.size(),
+                std::sqrt(ss / static_cast<double>(in_map.size())));
+  return std::make_pair(t, std::string(buf));
+}
 
 std::optional<MapFrameTruth> truthInMapFrame(const KeyframeMap& map, const DatasetReader& reader,
                                              const fs::path& dir) {
@@ -67,31 +92,22 @@ std::optional<MapFrameTruth> truthInMapFrame(const KeyframeMap& map, const Datas
   std::error_code ec;
   if (!src.empty() && fs::exists(abs_src, ec) && fs::exists(abs_dir, ec)) {
     const Trajectory src_abs = readTumTrajectory(abs_src);
-    for (const auto& kf : map.keyframes) {
-      const auto a = interpolatePose(src_abs, kf.stamp_ns);
-      if (!a) continue;
-      // T_abs_map = T_abs_kf (+) T_map_kf^-1
-      const mrpt::poses::CPose2D abs_map =
-          mrpt::poses::CPose2D(*a) + (mrpt::poses::CPose2D() - mrpt::poses::CPose2D(kf.pose));
+    if (const auto fit = fitMapFrame(map, [&](StampNs t) { return interpolatePose(src_abs, t); })) {
       MapFrameTruth t;
       for (const auto& sp : readTumTrajectory(abs_dir))
-        t.truth.push_back({sp.stamp, (mrpt::poses::CPose2D(sp.pose) - abs_map).asTPose()});
-      t.how = "absolute gt/poses.tum of the map's source and of the dataset";
+        t.truth.push_back({sp.stamp, (mrpt::poses::CPose2D(sp.pose) - fit->first).asTPose()});
+      t.how = "absolute gt/poses.tum of the map's source and of the dataset; " + fit->second;
       return t;
     }
   }
   if (!src.empty() && fs::equivalent(src, dir, ec) && reader.hasGroundTruth()) {
-    // The map was built from this dataset: tie the truth's frame to the map's through the first
-    // keyframe (a SLAM map starts at the identity, a map-synth map is in the truth's frame).
-    for (const auto& kf : map.keyframes) {
-      const auto g = reader.groundTruthAt(kf.stamp_ns);
-      if (!g) continue;
-      const mrpt::poses::CPose2D map_gt =
-          mrpt::poses::CPose2D(kf.pose) + (mrpt::poses::CPose2D() - mrpt::poses::CPose2D(*g));
+    // The map was built from this dataset (a SLAM map starts at the identity, a map-synth map is in
+    // the truth's frame).
+    if (const auto fit = fitMapFrame(map, [&](StampNs t) { return reader.groundTruthAt(t); })) {
       MapFrameTruth t;
       for (const auto& sp : reader.groundTruth())
-        t.truth.push_back({sp.stamp, (map_gt + mrpt::poses::CPose2D(sp.pose)).asTPose()});
-      t.how = "the dataset's ground truth (the map was built from it), tied at its first keyframe";
+        t.truth.push_back({sp.stamp, (mrpt::poses::CPose2D(sp.pose) - fit->first).asTPose()});
+      t.how = "the dataset's ground truth (the map was built from it); " + fit->second;
       return t;
     }
   }
