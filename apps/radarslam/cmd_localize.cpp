@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
-#include <functional>
 #include <future>
 #include <iostream>
 #include <optional>
@@ -23,7 +22,6 @@
 #include <radarslam/core/errors.h>
 #include <radarslam/core/log.h>
 #include <radarslam/core/yaml_params.h>
-#include <radarslam/eval/alignment.h>
 #include <radarslam/frontend/odometry.h>
 #include <radarslam/io/dataset.h>
 #include <radarslam/io/trajectory_files.h>
@@ -37,6 +35,7 @@
 #include "command.h"
 #include "dataset_config.h"
 #include "localize_dds.h"
+#include "localize_truth.h"
 
 namespace radarslam::cli {
 namespace {
@@ -49,69 +48,6 @@ double median(std::vector<double> v) {
   const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
   std::nth_element(v.begin(), mid, v.end());
   return *mid;
-}
-
-/// Ground truth of the dataset's scans expressed in the map frame, and how it was obtained. The
-/// dataset readers give ground truth in the dataset's own frame (e.g. Oxford: chained from the first
-/// scan), which is not the map's frame unless the map was built from the same dataset. When both
-/// the map's source dataset and DIR have absolute truth (gt/poses.tum, written by the simulator), or
-/// the map was built from DIR itself, the map frame is fitted to the truth at the map's keyframes
-/// (least-squares SE(2), eval::alignSE2): exact for a map-synth map, the best-fit frame for a SLAM
-/// map (whose own error then shows as the fit residual); otherwise the frames are not comparable.
-struct MapFrameTruth {
-  Trajectory truth;  ///< in the map frame
-  std::string how;
-};
-
-/// T_truth_map fitted to the keyframes with truth; nullopt if none has any.
-std::optional<std::pair<mrpt::poses::CPose2D, std::string>> fitMapFrame(
-    const KeyframeMap& map, const std::function<std::optional<mrpt::math::TPose2D>(StampNs)>& truth_at) {
-  std::vector<mrpt::math::TPoint2D> in_map, in_truth;
-  for (const auto& kf : map.keyframes)
-    if (const auto g = truth_at(kf.stamp_ns)) {
-      in_map.emplace_back(kf.pose.x, kf.pose.y);
-      in_truth.emplace_back(g->x, g->y);
-    }
-  if (in_map.empty()) return std::nullopt;
-  const mrpt::poses::CPose2D t(eval::alignSE2(in_map, in_truth));
-  double ss = 0;
-  for (std::size_t i = 0; i < in_map.size(); ++i) {
-    const auto p = t.composePoint(in_map[i]);
-    ss += (p.x - in_truth[i].x) * (p.x - in_truth[i].x) + (p.y - in_truth[i].y) * (p.y - in_truth[i].y);
-  }
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "map frame fitted to %zu keyframes, residual RMS %.2f m", in_map.size(),
-                std::sqrt(ss / static_cast<double>(in_map.size())));
-  return std::make_pair(t, std::string(buf));
-}
-
-std::optional<MapFrameTruth> truthInMapFrame(const KeyframeMap& map, const DatasetReader& reader,
-                                             const fs::path& dir) {
-  const fs::path src = map.meta.source_dataset;
-  const fs::path abs_src = src / "gt" / "poses.tum", abs_dir = dir / "gt" / "poses.tum";
-  std::error_code ec;
-  if (!src.empty() && fs::exists(abs_src, ec) && fs::exists(abs_dir, ec)) {
-    const Trajectory src_abs = readTumTrajectory(abs_src);
-    if (const auto fit = fitMapFrame(map, [&](StampNs t) { return interpolatePose(src_abs, t); })) {
-      MapFrameTruth t;
-      for (const auto& sp : readTumTrajectory(abs_dir))
-        t.truth.push_back({sp.stamp, (mrpt::poses::CPose2D(sp.pose) - fit->first).asTPose()});
-      t.how = "absolute gt/poses.tum of the map's source and of the dataset; " + fit->second;
-      return t;
-    }
-  }
-  if (!src.empty() && fs::equivalent(src, dir, ec) && reader.hasGroundTruth()) {
-    // The map was built from this dataset (a SLAM map starts at the identity, a map-synth map is in
-    // the truth's frame).
-    if (const auto fit = fitMapFrame(map, [&](StampNs t) { return reader.groundTruthAt(t); })) {
-      MapFrameTruth t;
-      for (const auto& sp : reader.groundTruth())
-        t.truth.push_back({sp.stamp, (mrpt::poses::CPose2D(sp.pose) - fit->first).asTPose()});
-      t.how = "the dataset's ground truth (the map was built from it); " + fit->second;
-      return t;
-    }
-  }
-  return std::nullopt;
 }
 
 struct Fetched {
@@ -294,10 +230,10 @@ int runLocalize(int argc, char** argv) {
   char line[512];
   const auto truth = reader ? truthInMapFrame(map, *reader, dir) : std::nullopt;
   const bool gt = truth.has_value();
-  std::vector<double> pos_err, head_err, fits;
+  std::vector<double> pos_err, head_err, map_pos_err, map_head_err, fits;
   std::ostringstream err_csv;
   err_csv << "# stamp_s scan status position_error_m heading_error_deg fit_score sigma_x_m sigma_y_m "
-             "sigma_phi_deg\n";
+             "sigma_phi_deg map_position_error_m map_heading_error_deg\n";
   std::size_t done = 0, localised = 0, fixes = 0, far_off = 0, skipped = 0;
   long first_fix = -1;
   LocalizationTiming total;
@@ -355,9 +291,13 @@ int runLocalize(int argc, char** argv) {
           pos_err.push_back(e);
           head_err.push_back(h);
           far_off += e > 5.0;
-          std::snprintf(line, sizeof line, "%s %zu %s %.4f %.4f %.4f %.4f %.4f %.4f\n",
+          // Relative to the nearest map keyframe: without the map's own error.
+          const auto rel = mapRelativeError(map, *truth, r.pose, *t);
+          if (rel) map_pos_err.push_back(rel->first), map_head_err.push_back(rel->second);
+          std::snprintf(line, sizeof line, "%s %zu %s %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f\n",
                         formatStampSeconds(r.stamp).c_str(), f.index, toString(r.status), e, h, r.fit_score,
-                        std::sqrt(c(0, 0)), std::sqrt(c(1, 1)), std::sqrt(c(2, 2)) * 180 / M_PI);
+                        std::sqrt(c(0, 0)), std::sqrt(c(1, 1)), std::sqrt(c(2, 2)) * 180 / M_PI,
+                        rel ? rel->first : NAN, rel ? rel->second : NAN);
           err_csv << line;
         }
       }
@@ -416,6 +356,14 @@ int runLocalize(int argc, char** argv) {
         pos_err.size(), median(pos_err),
         pos_err.empty() ? NAN : *std::max_element(pos_err.begin(), pos_err.end()), median(head_err),
         head_err.empty() ? NAN : *std::max_element(head_err.begin(), head_err.end()), far_off);
+    s << buf;
+    std::snprintf(buf, sizeof buf,
+                  "  vs the map     relative to the nearest map keyframe: position error median %.3f m, max "
+                  "%.3f m; heading error median %.3f deg, max %.3f deg\n",
+                  median(map_pos_err),
+                  map_pos_err.empty() ? NAN : *std::max_element(map_pos_err.begin(), map_pos_err.end()),
+                  median(map_head_err),
+                  map_head_err.empty() ? NAN : *std::max_element(map_head_err.begin(), map_head_err.end()));
     s << buf;
     std::cout << s.str();
     if (eval_arg.isSet()) {

@@ -12,7 +12,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli_run.h"
 #include "radarslam/io/dataset.h"
@@ -125,6 +127,36 @@ TEST_F(CliMap, ExtendsAMapWithASecondTraversal) {
                                              m.keyframes[i].pose.y - m.keyframes[j].pose.y));
     EXPECT_LT(nearest, 4.0) << "keyframe " << i;
   }
+}
+
+TEST_F(CliMap, SecondTraversalLocalisesInTheSlamMap) {
+  const fs::path map = tmp_ / "maps" / "slam";
+  ASSERT_EQ(
+      runCli("map '" + data(1).string() + "' -o '" + map.string() + "' --threads 1 -q", tmp_.path()).code, 0);
+  const fs::path poses = tmp_ / "poses.tum", eval = tmp_ / "eval";
+  const Result r = runCli("localize '" + map.string() + "' '" + data(2).string() + "' -o '" + poses.string() +
+                              "' --eval-dir '" + eval.string() + "' -q",
+                          tmp_.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  // The truth is in the SLAM map's fitted frame; errors come absolute and relative to the map.
+  EXPECT_NE(r.out.find("map frame fitted to"), std::string::npos) << r.out;
+  std::ifstream csv(eval / "errors.csv");
+  std::vector<double> map_err;
+  std::size_t rows = 0;
+  for (std::string line; std::getline(csv, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ss(line);
+    std::vector<std::string> c;
+    for (std::string v; ss >> v;) c.push_back(v);
+    ASSERT_EQ(c.size(), 11u) << line;
+    ++rows;
+    map_err.push_back(std::stod(c[9]));
+  }
+  ASSERT_GE(rows, 45u) << r.out;  // >= 90 % of the 50 scans localised
+  std::sort(map_err.begin(), map_err.end());
+  EXPECT_LT(map_err[map_err.size() / 2], 0.5) << r.out;  // measured 0.31 m on this 50-scan drive
+  EXPECT_LT(map_err.back(), 2.0) << r.out;
+  EXPECT_NE(r.out.find("vs the map"), std::string::npos) << r.out;
 }
 
 TEST_F(CliMap, BadInputGivesOneLineErrors) {
