@@ -29,8 +29,8 @@ struct TrackingParams {
   double max_speed_mps = 40.0;      ///< estimates implying more are rejected as failures
   int keep_keyframe_when_lost = 2;  ///< consecutive lost scans with too few keypoints that keep the keyframe
   bool motion_compensation = true;
-  bool acceleration_aware = true;  ///< per-scan velocity from neighbouring pairs, not the pair's mean
-  int compensation_passes = 2;     ///< re-compensate with the refined velocity and refine again
+  bool acceleration_aware = true;     ///< per-scan velocity from neighbouring pairs, not the pair's mean
+  int compensation_passes = 2;        ///< re-compensate with the refined velocity and refine again
   double max_prediction_gap_s = 1.0;  ///< longer intervals (data gaps) re-initialise, no constant velocity
 };
 

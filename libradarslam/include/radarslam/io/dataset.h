@@ -96,7 +96,7 @@ class ScanIterator {
   CObservationRadarScan::Ptr next();
   /// Dataset index of the scan last returned by next().
   std::size_t index() const { return last_; }
-  std::size_t skipped() const { return skipped_; }      ///< unreadable + duplicate scans skipped
+  std::size_t skipped() const { return skipped_; }     ///< unreadable + duplicate scans skipped
   std::size_t total() const { return end_ - first_; }  ///< scans this iterator will visit
   const ScanIteratorStats& stats() const { return stats_; }
 
