@@ -48,12 +48,9 @@ Trajectory readBoreasGroundTruth(const std::filesystem::path& csv) {
                      "unexpected header (expected 13 columns 'GPSTime,easting,northing,altitude,"
                      "vel_east,vel_north,vel_up,roll,pitch,heading,angvel_z,angvel_y,angvel_x')");
   Trajectory traj;
-  std::size_t line_no = 1;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (trim(line).empty()) continue;
-    const std::string where = lineWhere(csv, line_no);
-    const auto f = split(line, ',');
+  forEachDataLine(in, csv, ',', 1, [&](const DataLine& d) {
+    const std::string& where = d.where;
+    const auto& f = d.fields;
     if (f.size() != 13)
       throw InputError(where,
                        "malformed row: expected 13 comma-separated fields, got " + std::to_string(f.size()));
@@ -69,7 +66,7 @@ Trajectory readBoreasGroundTruth(const std::filesystem::path& csv) {
     if (!traj.empty() && t <= traj.back().stamp)
       throw InputError(where, "timestamp " + std::string(f[0]) + " is not after the previous row's");
     traj.push_back({t, projectSensorPoseToSE2(pose)});
-  }
+  });
   if (traj.empty()) throw InputError(csv.string(), "no ground-truth rows");
   return traj;
 }

@@ -21,15 +21,11 @@ mrpt::poses::CPose3D mulranBaseToRadar() {
 Trajectory readMulRanGroundTruth(const std::filesystem::path& csv,
                                  const mrpt::poses::CPose3D& base_to_radar) {
   auto in = openText(csv, "MulRan ground truth (global_pose.csv)");
-  std::string line;
   Trajectory traj;
-  std::size_t line_no = 0;
   mrpt::poses::CPose3D first_inv;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (trim(line).empty()) continue;
-    const std::string where = lineWhere(csv, line_no);
-    const auto f = split(line, ',');
+  forEachDataLine(in, csv, ',', 0, [&](const DataLine& d) {
+    const std::string& where = d.where;
+    const auto& f = d.fields;
     if (f.size() != 13)
       throw InputError(where, "malformed row: expected 13 comma-separated fields (t_ns + 3x4 [R|t]), got " +
                                   std::to_string(f.size()));
@@ -47,7 +43,7 @@ Trajectory readMulRanGroundTruth(const std::filesystem::path& csv,
     else if (t <= traj.back().stamp)
       throw InputError(where, "timestamp is not after the previous row's");
     traj.push_back({t, projectSensorPoseToSE2(first_inv + world_radar)});
-  }
+  });
   if (traj.empty()) throw InputError(csv.string(), "no ground-truth rows");
   return traj;
 }

@@ -18,14 +18,10 @@ CObservationRadarScan::Ptr readMulRanRayCsv(const std::filesystem::path& csv, co
   std::vector<std::vector<std::uint8_t>> rows;
   std::vector<StampNs> stamps;
   std::vector<double> angles;
-  std::string line;
-  std::size_t line_no = 0;
   std::size_t bins = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (trim(line).empty()) continue;
-    const std::string where = lineWhere(csv, line_no);
-    const auto f = split(line, ',');
+  forEachDataLine(in, csv, ',', 0, [&](const DataLine& d) {
+    const std::string& where = d.where;
+    const auto& f = d.fields;
     if (f.size() < 5)
       throw InputError(where, "malformed row: expected 't_ns,angle_deg,encoder,counter,bins...'");
     if (bins == 0) bins = f.size() - 4;
@@ -47,7 +43,7 @@ CObservationRadarScan::Ptr readMulRanRayCsv(const std::filesystem::path& csv, co
       row[b] = static_cast<std::uint8_t>(v);
     }
     rows.push_back(std::move(row));
-  }
+  });
   if (rows.size() < 2) throw InputError(csv.string(), "fewer than 2 azimuth rows");
   // The file name, when it is a timestamp, is the last azimuth's time (1 ms tolerance).
   if (StampNs name_stamp = 0; parseStampByDigits(csv.stem().string(), name_stamp) &&

@@ -20,17 +20,14 @@ std::vector<OxfordOdometryRow> readOxfordOdometryRows(const std::filesystem::pat
                      "unexpected header (expected 'source_timestamp,destination_timestamp,x,y,z,"
                      "roll,pitch,yaw,source_radar_timestamp,destination_radar_timestamp')");
   std::vector<OxfordOdometryRow> rows;
-  std::size_t line_no = 1;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (trim(line).empty()) continue;
-    const std::string where = lineWhere(csv, line_no);
-    const auto f = split(line, ',');
+  forEachDataLine(in, csv, ',', 1, [&](const DataLine& d) {
+    const std::string& where = d.where;
+    const auto& f = d.fields;
     if (f.size() != 10)
       throw InputError(where,
                        "malformed row: expected 10 comma-separated fields, got " + std::to_string(f.size()));
     OxfordOdometryRow r;
-    r.line = line_no;
+    r.line = d.number;
     r.source = parseMicroseconds(f[0], where, "source_timestamp");
     r.destination = parseMicroseconds(f[1], where, "destination_timestamp");
     r.motion = {parseDouble(f[2], where, "x"), parseDouble(f[3], where, "y"),
@@ -41,7 +38,7 @@ std::vector<OxfordOdometryRow> readOxfordOdometryRows(const std::filesystem::pat
     if (r.source <= r.destination)
       throw InputError(where, "source_timestamp must be later than destination_timestamp");
     rows.push_back(r);
-  }
+  });
   if (rows.empty()) throw InputError(csv.string(), "no ground-truth rows");
   return rows;
 }

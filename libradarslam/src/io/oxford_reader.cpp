@@ -24,13 +24,9 @@ std::vector<IndexEntry> readRadarTimestamps(const std::filesystem::path& root) {
                      "missing radar.timestamps (Oxford layout: radar/*.png + radar.timestamps)");
   auto in = openText(file, "radar.timestamps");
   std::vector<IndexEntry> index;
-  std::string line;
-  std::size_t line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (trim(line).empty()) continue;
-    const std::string where = lineWhere(file, line_no);
-    const auto fields = split(trim(line), ' ');
+  forEachDataLine(in, file, ' ', 0, [&](const DataLine& d) {
+    const std::string& where = d.where;
+    const auto& fields = d.fields;
     if (fields.empty() || fields.size() > 2)
       throw InputError(where, "malformed line: expected '<timestamp_us> <flag>'");
     IndexEntry e;
@@ -40,7 +36,7 @@ std::vector<IndexEntry> readRadarTimestamps(const std::filesystem::path& root) {
       throw InputError(where, "timestamps are not increasing (" + std::string(fields[0]) + " after " +
                                   std::to_string(index.back().stamp / kNsPerUs) + ")");
     index.push_back(std::move(e));
-  }
+  });
   if (index.empty()) throw InputError(file.string(), "no timestamps");
   return index;
 }

@@ -22,13 +22,9 @@ std::vector<IndexEntry> readFrameTimes(const std::filesystem::path& root) {
   const auto file = root / "Navtech_Polar.txt";
   auto in = openText(file, "Navtech_Polar.txt (RADIATE frame times)");
   std::vector<IndexEntry> index;
-  std::string line;
-  std::size_t line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (trim(line).empty()) continue;
-    const std::string where = lineWhere(file, line_no);
-    const auto f = split(trim(line), ' ');
+  forEachDataLine(in, file, ' ', 0, [&](const DataLine& d) {
+    const std::string& where = d.where;
+    const auto& f = d.fields;
     StampNs t = 0;
     if (f.size() != 4 || f[0] != "Frame:" || f[2] != "Time:" ||
         !parseSecondsDotFraction(std::string(f[3]), t))
@@ -36,7 +32,7 @@ std::vector<IndexEntry> readFrameTimes(const std::filesystem::path& root) {
     parseInt(f[1], where, "frame number");
     if (!index.empty() && t <= index.back().stamp) throw InputError(where, "frame times are not increasing");
     index.push_back({t, root / "Navtech_Polar" / (std::string(f[1]) + ".png")});
-  }
+  });
   if (index.empty()) throw InputError(file.string(), "no frames");
   return index;
 }

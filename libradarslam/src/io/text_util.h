@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <istream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,6 +23,30 @@ std::string_view trim(std::string_view s);
 
 /// "file:line" style location for messages about a line of a text file.
 std::string lineWhere(const std::filesystem::path& file, std::size_t line_no);
+
+/// A non-blank line of a text file, split into fields (valid during the callback only).
+struct DataLine {
+  std::size_t number = 0;                ///< 1-based line number
+  std::string where;                     ///< "file:line", for messages
+  std::vector<std::string_view> fields;  ///< the trimmed line split on the separator
+};
+
+/// Reads `in` to its end and calls f(const DataLine&) for every non-blank line; `lines_read` lines
+/// (e.g. a header) were consumed before, so numbers continue from there.
+template <class F>
+void forEachDataLine(std::istream& in, const std::filesystem::path& file, char sep, std::size_t lines_read,
+                     F&& f) {
+  std::string line;
+  DataLine d;
+  d.number = lines_read;
+  while (std::getline(in, line)) {
+    ++d.number;
+    if (trim(line).empty()) continue;
+    d.where = lineWhere(file, d.number);
+    d.fields = split(trim(line), sep);
+    f(static_cast<const DataLine&>(d));
+  }
+}
 
 /// Parse helpers: throw InputError(where, "<field name> is not a number: '<text>'").
 double parseDouble(std::string_view text, const std::string& where, const char* field);
