@@ -161,8 +161,7 @@ int main(int argc, char** argv) {
     std::cerr << "radarslam-map-client: error: " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {
-    const std::string what = e.what();
-    std::cerr << "radarslam-map-client: error: " << what.substr(0, what.find('\n')) << "\n";
+    std::cerr << "radarslam-map-client: error: " << radarslam::describeException(e) << "\n";
     return 1;
   }
 }

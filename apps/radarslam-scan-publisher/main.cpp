@@ -94,8 +94,7 @@ int main(int argc, char** argv) {
     std::cerr << "radarslam-scan-publisher: error: " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {
-    const std::string what = e.what();
-    std::cerr << "radarslam-scan-publisher: error: " << what.substr(0, what.find('\n')) << "\n";
+    std::cerr << "radarslam-scan-publisher: error: " << radarslam::describeException(e) << "\n";
     return 1;
   }
 }

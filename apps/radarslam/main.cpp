@@ -53,8 +53,7 @@ int main(int argc, char** argv) {
     std::cerr << "radarslam: error: " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {
-    std::string what = e.what();
-    std::cerr << "radarslam: error: " << what.substr(0, what.find('\n')) << "\n";
+    std::cerr << "radarslam: error: " << radarslam::describeException(e) << "\n";
     return 1;
   }
 }

@@ -1,9 +1,10 @@
 #include "png_file.h"
 
+#include "png_decode.h"
+
 #include <array>
 #include <cstdint>
 #include <cstring>
-#include <opencv2/imgcodecs.hpp>
 #include <span>
 #include <string>
 
@@ -103,16 +104,7 @@ cv::Mat readGreyPng(const std::filesystem::path& file) {
   if (static_cast<long long>(size.width) * size.height > kMaxPixels)
     throw InputError(file.string(), "PNG header claims " + std::to_string(size.width) + " x " +
                                         std::to_string(size.height) + " pixels, more than any radar scan");
-  cv::Mat img;
-  try {
-    img = cv::imdecode(cv::_InputArray(bytes.data(), static_cast<int>(bytes.size())), cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& e) {
-    throw InputError(file.string(), std::string("PNG could not be decoded (") + e.err + ")");
-  }
-  if (img.empty()) throw InputError(file.string(), "PNG could not be decoded (corrupt image data)");
-  if (img.type() != CV_8UC1)
-    throw InputError(file.string(), "expected an 8-bit greyscale PNG, got " + std::to_string(img.channels()) +
-                                        " channel(s) of depth " + std::to_string(img.depth()));
+  cv::Mat img = decodeGreyPng(bytes.data(), bytes.size(), file);
   if (img.cols != size.width || img.rows != size.height)
     throw InputError(file.string(), "PNG decoded to a different size than its header says");
   return img;
