@@ -9,6 +9,8 @@
 
 #include <unistd.h>
 
+#include <octomap/OcTree.h>
+
 #include "radarslam/map/map_exports.h"
 #include "radarslam/map/map_io.h"
 #include "radarslam/map/sha256.h"
@@ -83,12 +85,54 @@ void BM_ExportGrid(benchmark::State& state) {
 }
 BENCHMARK(BM_ExportGrid)->Arg(1000)->Unit(benchmark::kMillisecond);
 
-void BM_ExportOctomap(benchmark::State& state) {
+// OctoMap layer (.bt + .ot), both fills (map_exports.h): keyframes/s is the issue-16 figure.
+void BM_ExportOctomap(benchmark::State& state, OctomapExportParams::Fill fill) {
   const KeyframeMap map = bigMap(static_cast<int>(state.range(0)), 1500);
   BenchDir dir;
-  for (auto _ : state) exportOctomap(map, dir.path);
+  OctomapExportParams params;
+  params.fill = fill;
+  for (auto _ : state) exportOctomap(map, dir.path, "map", params);
+  state.counters["keyframes/s"] = benchmark::Counter(static_cast<double>(state.iterations() * state.range(0)),
+                                                     benchmark::Counter::kIsRate);
+  state.counters["bt_MB"] = static_cast<double>(fs::file_size(dir.path / "map.bt")) / 1e6;
 }
-BENCHMARK(BM_ExportOctomap)->Arg(50)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ExportOctomap, grid_columns, OctomapExportParams::Fill::grid_columns)
+    ->Arg(50)
+    ->Arg(1000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ExportOctomap, point_rays, OctomapExportParams::Fill::point_rays)
+    ->Arg(50)
+    ->Unit(benchmark::kMillisecond);
+
+// How the two fills differ on the same map: of the voxels either one knows, the fraction both
+// classify alike (occupied / free), and the voxels only one of them knows.
+void BM_OctomapFillAgreement(benchmark::State& state) {
+  const KeyframeMap map = bigMap(static_cast<int>(state.range(0)), 1500);
+  BenchDir dir;
+  OctomapExportParams rays;
+  rays.fill = OctomapExportParams::Fill::point_rays;
+  exportOctomap(map, dir.path, "rays", rays);
+  exportOctomap(map, dir.path, "cols");
+  const octomap::OcTree a((dir.path / "rays.bt").string()), b((dir.path / "cols.bt").string());
+  double same = 0, differ = 0, only_rays = 0, only_cols = 0;
+  for (auto _ : state) {
+    same = differ = only_rays = only_cols = 0;
+    for (auto it = a.begin_leafs(); it != a.end_leafs(); ++it) {
+      const auto* n = b.search(it.getKey());
+      if (n == nullptr)
+        ++only_rays;
+      else
+        (a.isNodeOccupied(*it) == b.isNodeOccupied(n) ? same : differ) += 1;
+    }
+    for (auto it = b.begin_leafs(); it != b.end_leafs(); ++it)
+      if (a.search(it.getKey()) == nullptr) ++only_cols;
+  }
+  state.counters["agree"] = same / (same + differ);
+  state.counters["only_rays"] = only_rays;
+  state.counters["only_cols"] = only_cols;
+  state.counters["both"] = same + differ;
+}
+BENCHMARK(BM_OctomapFillAgreement)->Arg(50)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 void BM_ExportCloudAndSimplemap(benchmark::State& state) {
   const KeyframeMap map = bigMap(static_cast<int>(state.range(0)), 1500);

@@ -15,6 +15,7 @@
 
 #include "radarslam/core/atomic_file.h"
 #include "radarslam/core/errors.h"
+#include "radarslam/map/octomap_slab.h"
 #include "radarslam/map/sha256.h"
 
 namespace radarslam::dds {
@@ -88,19 +89,28 @@ PointCloud2Msg cloudMessage(const KeyframeMap& map, StampNs stamp) {
 }
 
 OctomapMsg octomapMessage(const KeyframeMap& map, const OctomapExportParams& params, StampNs stamp) {
-  ScratchDir scratch;
-  exportOctomap(map, scratch.path, "map", params);
-  octomap::OcTree tree(params.resolution_m);
-  const fs::path bt = scratch.path / "map.bt";
-  if (!tree.readBinary(bt.string())) throw InputError(bt.string(), "cannot read back the exported OctoMap");
-  std::ostringstream os(std::ios::binary);
-  tree.writeBinaryData(os);
-  const std::string bytes = os.str();
   OctomapMsg m;
   m.header = mapHeader(stamp);
   m.binary = true;
   m.id = "OcTree";
-  m.resolution = tree.getResolution();
+  m.resolution = params.resolution_m;
+  std::string bytes;
+  if (params.fill == OctomapExportParams::Fill::grid_columns) {
+    GridExportParams grid;
+    grid.resolution_m = params.resolution_m;
+    OctomapSlabParams slab_params;
+    slab_params.full_data = false;
+    bytes = encodeOctomapSlab(buildOccupancy(map, grid), slab_params).binary_data;
+  } else {
+    ScratchDir scratch;
+    exportOctomap(map, scratch.path, "map", params);
+    octomap::OcTree tree(params.resolution_m);
+    const fs::path bt = scratch.path / "map.bt";
+    if (!tree.readBinary(bt.string())) throw InputError(bt.string(), "cannot read back the exported OctoMap");
+    std::ostringstream os(std::ios::binary);
+    tree.writeBinaryData(os);
+    bytes = os.str();
+  }
   m.data.assign(reinterpret_cast<const std::int8_t*>(bytes.data()),
                 reinterpret_cast<const std::int8_t*>(bytes.data()) + bytes.size());
   return m;

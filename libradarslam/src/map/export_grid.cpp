@@ -111,6 +111,8 @@ OccupancyRaster buildOccupancy(const KeyframeMap& map, const GridExportParams& p
     for (std::size_t i : hits)
       log_odds[i] = std::min(clamp, log_odds[i] + static_cast<float>(params.log_odds_hit));
   }
+  out.observed.resize(cells);
+  for (std::size_t i = 0; i < cells; ++i) out.observed[i] = hit_stamp[i] != 0 || miss_stamp[i] != 0;
   out.p_occupied.resize(cells);
   for (std::size_t i = 0; i < cells; ++i) out.p_occupied[i] = 1.f / (1.f + std::exp(-log_odds[i]));
   return out;

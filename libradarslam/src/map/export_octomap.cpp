@@ -1,6 +1,7 @@
-// OctoMap export: the keyframe points as a slab at z = 0, inserted per keyframe from its origin so
-// the rays carve free space (octomap::OcTree::insertPointCloud). Written through the stream API
-// into memory and then atomically, so nothing is printed to our stdout.
+// OctoMap export. Default (Fill::grid_columns): the occupancy raster lifted into the slab
+// z in [0, resolution), encoded directly (octomap_slab.h). Fill::point_rays: the keyframe points at
+// z = 0 inserted per keyframe from its origin (octomap::OcTree::insertPointCloud), written through
+// the stream API into memory. Both are written atomically, nothing is printed to our stdout.
 #include <octomap/OcTree.h>
 
 #include <chrono>
@@ -11,13 +12,30 @@
 #include "radarslam/core/errors.h"
 #include "radarslam/core/log.h"
 #include "radarslam/map/map_exports.h"
+#include "radarslam/map/octomap_slab.h"
 
 namespace radarslam {
 namespace fs = std::filesystem;
 
+namespace {
+
+std::vector<fs::path> writeGridColumns(const KeyframeMap& map, const fs::path& dir, const std::string& stem,
+                                       const OctomapExportParams& params) {
+  GridExportParams grid;
+  grid.resolution_m = params.resolution_m;
+  const OctomapSlab slab = encodeOctomapSlab(buildOccupancy(map, grid));
+  const fs::path bt = dir / (stem + ".bt"), ot = dir / (stem + ".ot");
+  writeTextAtomically(bt, octomapBinaryFile(slab));
+  writeTextAtomically(ot, octomapFullFile(slab));
+  return {bt, ot};
+}
+
+}  // namespace
+
 std::vector<fs::path> exportOctomap(const KeyframeMap& map, const fs::path& dir, const std::string& stem,
                                     const OctomapExportParams& params) {
   if (!(params.resolution_m > 0)) throw InputError("octomap export", "resolution must be > 0");
+  if (params.fill == OctomapExportParams::Fill::grid_columns) return writeGridColumns(map, dir, stem, params);
   octomap::OcTree tree(params.resolution_m);
   // Ray tracing is slow (about 0.14 s per 1500-point keyframe): report progress with rate and ETA.
   const auto t0 = std::chrono::steady_clock::now();
