@@ -7,6 +7,7 @@ packages=(
   libmrpt-graphslam-dev libeigen3-dev libopencv-dev liboctomap-dev libpng-dev
   cyclonedds-dev cyclonedds-tools libceres-dev libtclap-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  mrpt-apps  # rawlog-edit: test_cli_mrpt_plugin reads our rawlogs with MRPT's own tool
 )
 missing=()
 for p in "${packages[@]}"; do
