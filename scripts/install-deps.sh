@@ -8,6 +8,7 @@ packages=(
   cyclonedds-dev cyclonedds-tools libceres-dev libtclap-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   mrpt-apps  # rawlog-edit: test_cli_mrpt_plugin reads our rawlogs with MRPT's own tool
+  systemd dpkg-dev  # systemd-analyze verify and dpkg-shlibdeps: test/install/test_install.sh
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -2,6 +2,7 @@
 
 #include <radarslam/core/errors.h>
 #include <radarslam/core/log.h>
+#include <radarslam/core/version.h>
 
 namespace radarslam::cli {
 
@@ -15,7 +16,7 @@ class OneLineOutput : public TCLAP::StdOutput {
 
 CommandLine::CommandLine(const std::string& name, const std::string& description)
     : name_("radarslam " + name),
-      cmd_(description, ' ', RADARSLAM_VERSION),
+      cmd_(description, ' ', radarslam::versionText()),
       verbosity_("", "verbosity", "Log level: DEBUG, INFO, WARN or ERROR", false, "INFO", "LEVEL", cmd_) {}
 
 void CommandLine::parse(int argc, char** argv) {

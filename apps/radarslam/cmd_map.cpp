@@ -16,6 +16,7 @@
 #include <radarslam/core/atomic_file.h>
 #include <radarslam/core/errors.h>
 #include <radarslam/core/log.h>
+#include <radarslam/core/version.h>
 #include <radarslam/core/yaml_params.h>
 #include <radarslam/eval/evaluate.h>
 #include <radarslam/eval/plots.h>
@@ -176,7 +177,7 @@ int runMap(int argc, char** argv) {
   map.meta.parameters_yaml = config_text;
   map.meta.source_dataset = fs::absolute(dir).lexically_normal().string();
   if (base) map.meta.source_dataset = base->meta.source_dataset + ";" + map.meta.source_dataset;
-  map.meta.software_version = RADARSLAM_VERSION;
+  map.meta.software_version = radarslam::versionText();
   const auto ts = Clock::now();
   saveMap(map, map_dir);
   const double save_ms = std::chrono::duration<double, std::milli>(Clock::now() - ts).count();

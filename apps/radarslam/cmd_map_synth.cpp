@@ -8,6 +8,7 @@
 
 #include <radarslam/core/errors.h>
 #include <radarslam/core/log.h>
+#include <radarslam/core/version.h>
 #include <radarslam/io/dataset.h>
 #include <radarslam/map/map_from_trajectory.h>
 #include <radarslam/map/map_io.h>
@@ -45,7 +46,7 @@ int runMapSynth(int argc, char** argv) {
   const PeakCloudParams pp;
   KeyframeMap map;
   map.meta.source_dataset = std::filesystem::absolute(data_arg.getValue()).lexically_normal().string();
-  map.meta.software_version = RADARSLAM_VERSION;
+  map.meta.software_version = radarslam::versionText();
   map.meta.parameters_yaml =
       "map_synth:\n  keyframe_distance_m: " + std::to_string(kp.keyframe_distance_m) +
       "\n  keyframe_angle_rad: " + std::to_string(kp.keyframe_angle_rad) +

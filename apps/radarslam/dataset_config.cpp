@@ -36,6 +36,10 @@ std::optional<fs::path> findConfigFile(const std::string& name) {
   }
   std::error_code ec;
   fs::path dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
+  // Installed: <prefix>/bin/radarslam -> <prefix>/share/radarslam/config (cmake/Install.cmake).
+  if (!ec && fs::exists(dir.parent_path() / "share" / "radarslam" / "config" / name))
+    return dir.parent_path() / "share" / "radarslam" / "config" / name;
+  // In a build tree: build/apps/radarslam -> config/ of the source tree above it.
   for (int up = 0; up < 5 && !ec && !dir.empty(); ++up, dir = dir.parent_path()) {
     if (fs::exists(dir / "config" / name)) return dir / "config" / name;
     if (dir == dir.parent_path()) break;

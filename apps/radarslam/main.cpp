@@ -4,6 +4,7 @@
 #include <string>
 
 #include <radarslam/core/errors.h>
+#include <radarslam/core/version.h>
 #include <radarslam/obs/registration.h>
 
 #include "command.h"
@@ -17,7 +18,7 @@ std::map<std::string, Command>& commandRegistry() {
 
 namespace {
 void printUsage(std::ostream& os) {
-  os << "radarslam " RADARSLAM_VERSION " - radar SLAM for 360° spinning FMCW radars\n\n"
+  os << "radarslam " << radarslam::versionText() << " - radar SLAM for 360° spinning FMCW radars\n\n"
      << "Usage: radarslam <command> [options]    (radarslam <command> --help for details)\n\nCommands:\n";
   for (const auto& [name, cmd] : radarslam::cli::commandRegistry())
     os << "  " << name << std::string(name.size() < 12 ? 12 - name.size() : 1, ' ') << cmd.summary << "\n";
@@ -36,7 +37,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (name == "--version") {
-    std::cout << "radarslam " RADARSLAM_VERSION "\n";
+    std::cout << "radarslam " << radarslam::versionText() << "\n";
     return 0;
   }
   const auto& registry = radarslam::cli::commandRegistry();
