@@ -15,6 +15,7 @@
 
 #include <radarslam/core/atomic_file.h>
 #include <radarslam/core/errors.h>
+#include <radarslam/core/input_file.h>
 #include <radarslam/core/log.h>
 #include <radarslam/core/yaml_params.h>
 #include <radarslam/eval/evaluate.h>
@@ -109,6 +110,7 @@ int runMap(int argc, char** argv) {
   SlamParams params;
   std::string config_used = "built-in defaults", config_text;
   if (const auto config = findConfig(config_arg.getValue(), reader->kind())) {
+    requireRegularFile(config->string());
     const YamlParams yaml = YamlParams::fromFile(config->string());
     loadParams(yaml, params);
     yaml.rejectUnknownKeys();

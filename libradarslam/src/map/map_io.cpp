@@ -13,6 +13,7 @@
 #include "binary_codec.h"
 #include "radarslam/core/atomic_file.h"
 #include "radarslam/core/errors.h"
+#include "radarslam/core/input_file.h"
 #include "radarslam/core/log.h"
 #include "radarslam/core/yaml_params.h"
 #include "radarslam/map/sha256.h"
@@ -254,6 +255,7 @@ void writeFileSynced(const fs::path& path, const std::string& bytes) {
 }
 
 std::string readWholeFile(const fs::path& path) {
+  requireRegularFile(path, "missing or unreadable map file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), "missing or unreadable map file");
   in.seekg(0, std::ios::end);
@@ -377,12 +379,13 @@ KeyframeMap loadMap(const fs::path& dir_in) {
     } else if (!fs::exists(dir, ec)) {
       throw InputError(dir.string(), "no map here (directory does not exist)");
     } else {
-      throw InputError((dir / "manifest.yaml").string(), "missing: not a radarslam map directory");
+      requireRegularFile(dir / "manifest.yaml", "missing: not a radarslam map directory");
     }
   }
 
   const fs::path manifest_path = dir / "manifest.yaml";
   const std::string mp = manifest_path.string();
+  requireRegularFile(manifest_path);
   const YamlParams manifest = YamlParams::fromFile(mp);
   if (!manifest.has("format_version")) throw InputError(mp, "format_version missing");
   unsigned version = 0;
