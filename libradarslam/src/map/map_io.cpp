@@ -12,6 +12,7 @@
 
 #include "binary_codec.h"
 #include "manifest_strings.h"
+#include "map_validation.h"
 #include "radarslam/core/atomic_file.h"
 #include "radarslam/core/errors.h"
 #include "radarslam/core/input_file.h"
@@ -421,6 +422,7 @@ KeyframeMap loadMap(const fs::path& dir_in) {
   sensor.get("num_bins", map.meta.sensor.num_bins);
   sensor.get("range_resolution_m", map.meta.sensor.range_resolution_m);
   sensor.get("range_offset_m", map.meta.sensor.range_offset_m);
+  mapcodec::validateSensor(map.meta.sensor, mp);
 
   const YamlParams files = manifest.section("files");
   for (const auto& entry : kFiles) {
@@ -473,6 +475,9 @@ KeyframeMap loadMap(const fs::path& dir_in) {
   checkCount("keyframes", map.keyframes.size());
   checkCount("points", map.points.size());
   checkCount("edges", map.edges.size());
+  mapcodec::validateKeyframes(map, (dir / "keyframes.bin").string());
+  mapcodec::validatePoints(map, (dir / "points.bin").string());
+  mapcodec::validateGraph(map, (dir / "graph.bin").string());
   return map;
 }
 
