@@ -2,6 +2,7 @@
 // it keeps publishing the last good map, says so once (not on every poll), stays responsive to
 // SIGTERM, and picks up the next good map when the files change again.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <limits>
@@ -80,6 +81,22 @@ TEST(MapServerBadReload, KeepsTheLastGoodMapAndLogsTheFailureOnce) {
     EXPECT_EQ(client.wait(20), 0) << client.err();
   }
   server.signal(SIGTERM);
+  EXPECT_EQ(server.wait(10), 0) << server.err();
+}
+
+TEST(MapServerBadReload, AFifoInPlaceOfAMapFileDoesNotBlockTheServer) {
+  test::TempDir tmp;
+  const fs::path map_dir = tmp.path() / "site";
+  saveMap(test::syntheticMap(3, 100, 20.0, 24), map_dir);
+  Child server({RADARSLAM_MAP_SERVER, "--map", map_dir.string(), "--domain",
+                std::to_string(test::testDomainId(19)), "--layers", "grid", "--poll", "0.05"},
+               tmp.path() / "server");
+  ASSERT_TRUE(server.waitForLog("revision 1", 15)) << server.err();
+  fs::remove(map_dir / "points.bin");
+  ASSERT_EQ(::mkfifo((map_dir / "points.bin").c_str(), 0600), 0);
+  std::ofstream(map_dir / "manifest.yaml", std::ios::app) << "# edited\n";  // the manifest changed
+  ASSERT_TRUE(server.waitForLog("not a regular file (a FIFO)", 15)) << server.err();
+  server.signal(SIGTERM);  // not stuck in open()
   EXPECT_EQ(server.wait(10), 0) << server.err();
 }
 
