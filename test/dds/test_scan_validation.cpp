@@ -9,9 +9,13 @@
 #include <limits>
 
 #include <radarslam/core/errors.h>
+#include <radarslam/dds/domain.h>
 #include <radarslam/dds/scan_messages.h>
 #include <radarslam/dds/scan_stream_filter.h>
+#include <radarslam/dds/scan_subscriber.h>
 #include <radarslam/obs/scan_checks.h>
+
+#include "dds_test_util.h"
 
 namespace radarslam {
 namespace {
@@ -122,6 +126,27 @@ TEST(ScanValidation, ScanFromMessageThrowsInputErrorForImplausibleSamples) {
   m.range_resolution = 1e300;
   EXPECT_THROW(dds::scanFromMessage(m), InputError);
   EXPECT_NO_THROW(dds::scanFromMessage(sample(1)));
+}
+
+TEST(ScanValidation, ScanSubscriberHandsOutOnlyTheValidSamples) {
+  using namespace std::chrono_literals;
+  dds::Domain dom(test::testDomainId(17));
+  dds::ScanSubscriber sub(dom, dds::kRadarScanTopic, 16);
+  dds::Publisher<dds::RadarScanMsg> pub(dom, dds::kRadarScanTopic, dds::TopicQos::stream(16));
+  ASSERT_TRUE(pub.waitForSubscriptions(1, 5s));
+  dds::RadarScanMsg zero = sample(1);
+  std::fill(zero.azimuth_stamps_ns.begin(), zero.azimuth_stamps_ns.end(), 0);
+  pub.publish(zero);       // stamps at t = 0
+  pub.publish(sample(2));  // good
+  pub.publish(sample(1));  // back in time
+  pub.publish(sample(3));  // good
+  const auto a = sub.next(5s), b = sub.next(5s);
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->azimuth_stamps_ns[0], sample(2).azimuth_stamps_ns[0]);
+  EXPECT_EQ(b->azimuth_stamps_ns[0], sample(3).azimuth_stamps_ns[0]);
+  EXPECT_FALSE(sub.next(50ms));
+  EXPECT_EQ(sub.filter().dropped(), 2u);
+  EXPECT_EQ(sub.filter().accepted(), 2u);
 }
 
 }  // namespace
