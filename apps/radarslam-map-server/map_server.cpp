@@ -1,5 +1,7 @@
 #include "map_server.h"
 
+#include <sys/stat.h>
+
 #include <chrono>
 #include <exception>
 #include <fstream>
@@ -35,11 +37,27 @@ Layers parseLayers(const std::string& text) {
 }
 
 std::optional<std::string> manifestSha256(const fs::path& map_dir) {
+  struct stat st {};  // never open a FIFO (it would block) or a directory
+  if (::stat((map_dir / "manifest.yaml").c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return std::nullopt;
   std::ifstream in(map_dir / "manifest.yaml", std::ios::binary);
   if (!in) return std::nullopt;
   std::ostringstream ss;
   ss << in.rdbuf();
   return sha256Hex(ss.str());
+}
+
+std::string mapFingerprint(const fs::path& map_dir) {
+  std::ostringstream fp;
+  fp << manifestSha256(map_dir).value_or("-");
+  for (const char* name : {"manifest.yaml", "parameters.yaml", "keyframes.bin", "points.bin", "graph.bin"}) {
+    struct stat st {};
+    if (::stat((map_dir / name).c_str(), &st) != 0)
+      fp << " -";
+    else
+      fp << ' ' << st.st_mode << ':' << st.st_size << ':' << st.st_mtim.tv_sec << '.' << st.st_mtim.tv_nsec
+         << ':' << st.st_ino;
+  }
+  return fp.str();
 }
 
 MapServer::MapServer(dds::Domain& domain, ServerParams params) : domain_(domain), params_(std::move(params)) {
@@ -99,7 +117,7 @@ void MapServer::load() {
   info_pub_->publish(info);
   revision_ = info.revision;
   loaded_manifest_sha_ = *after;
-  failed_manifest_sha_.clear();
+  failed_fingerprint_.clear();
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   logger().logFmt(LVL_INFO, "published map '%s' revision %u (%u keyframes): %sin %.2f s", map_name_.c_str(),
                   revision_, info.keyframes, summary.c_str(), secs);
@@ -108,14 +126,17 @@ void MapServer::load() {
 bool MapServer::reloadIfChanged() {
   const auto sha = manifestSha256(params_.map_dir);
   if (!sha || *sha == loaded_manifest_sha_) return false;
+  // A map that failed to load is retried only once its files change (not on every poll).
+  const std::string fingerprint = mapFingerprint(params_.map_dir);
+  if (fingerprint == failed_fingerprint_) return false;
   try {
     logger().logFmt(LVL_INFO, "map '%s' changed on disk, reloading", map_name_.c_str());
     load();
     return true;
   } catch (const std::exception& e) {  // InputError (bad map) or a DDS write error
-    if (*sha != failed_manifest_sha_)
-      logger().logFmt(LVL_WARN, "keeping revision %u: %s (will retry)", revision_, e.what());
-    failed_manifest_sha_ = *sha;
+    logger().logFmt(LVL_WARN, "keeping revision %u: %s (retrying when the map's files change)", revision_,
+                    e.what());
+    failed_fingerprint_ = fingerprint;
     return false;
   }
 }

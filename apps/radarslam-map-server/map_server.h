@@ -32,8 +32,8 @@ class MapServer {
   /// loaded (the previously published map, if any, stays published).
   void load();
   /// Reloads if the manifest changed since the last load (checked by content hash). Returns true
-  /// if a new map was published. A map that fails to load is reported once (WARN) and retried on
-  /// the next poll.
+  /// if a new map was published. A map that fails to load is reported once (WARN) and the last
+  /// good map stays published; it is retried only when mapFingerprint() changes.
   bool reloadIfChanged();
   std::uint32_t revision() const { return revision_; }
 
@@ -46,11 +46,16 @@ class MapServer {
   std::unique_ptr<dds::Publisher<dds::OctomapMsg>> octomap_pub_;
   std::unique_ptr<dds::Publisher<dds::MapInfoMsg>> info_pub_;
   std::string loaded_manifest_sha_;
-  std::string failed_manifest_sha_;
+  std::string failed_fingerprint_;  // mapFingerprint() of the map that last failed to load
   std::uint32_t revision_ = 0;
 };
 
-/// SHA-256 (hex) of a map's manifest.yaml, or nullopt if it cannot be read (e.g. mid-swap).
+/// SHA-256 (hex) of a map's manifest.yaml, or nullopt if it cannot be read (e.g. mid-swap) or is
+/// not a regular file (a FIFO is never opened).
 std::optional<std::string> manifestSha256(const std::filesystem::path& map_dir);
+
+/// The manifest's SHA-256 plus type, size, mtime and inode of every map file (stat only): changes
+/// whenever anything a load reads changes.
+std::string mapFingerprint(const std::filesystem::path& map_dir);
 
 }  // namespace radarslam::map_server

@@ -20,6 +20,7 @@
 
 #include <radarslam/core/atomic_file.h>
 #include <radarslam/core/errors.h>
+#include <radarslam/core/input_file.h>
 #include <radarslam/core/log.h>
 #include <radarslam/core/yaml_params.h>
 #include <radarslam/frontend/odometry.h>
@@ -163,6 +164,7 @@ int runLocalize(int argc, char** argv) {
       if (auto f = findConfigFile("localization.yaml")) files.push_back(*f);
     }
     for (const auto& f : files) {
+      requireRegularFile(f.string());
       const YamlParams yaml = YamlParams::fromFile(f.string());
       // Our own section first: the odometry loader accepts cartesian:/odometry: only, and
       // rejectUnknownKeys() below then checks the whole file.

@@ -15,6 +15,7 @@
 
 #include <radarslam/core/atomic_file.h>
 #include <radarslam/core/errors.h>
+#include <radarslam/core/input_file.h>
 #include <radarslam/core/log.h>
 #include <radarslam/core/version.h>
 #include <radarslam/core/yaml_params.h>
@@ -110,6 +111,7 @@ int runMap(int argc, char** argv) {
   SlamParams params;
   std::string config_used = "built-in defaults", config_text;
   if (const auto config = findConfig(config_arg.getValue(), reader->kind())) {
+    requireRegularFile(config->string());
     const YamlParams yaml = YamlParams::fromFile(config->string());
     loadParams(yaml, params);
     yaml.rejectUnknownKeys();
@@ -126,16 +128,20 @@ int runMap(int argc, char** argv) {
   const std::size_t end =
       count_arg.isSet() ? std::min(reader->size(), first + static_cast<std::size_t>(count_arg.getValue()))
                         : reader->size();
+  // Every input is checked before the first status line: a bad base map is one line of error.
+  std::optional<KeyframeMap> base;
+  fs::path base_dir;
+  if (extend_arg.isSet()) {
+    base_dir = resolveMapPath(extend_arg.getValue());
+    base = loadMap(base_dir);
+  }
   std::cerr << "map: " << toString(reader->kind()) << " (" << reader->sensorName() << "), scans " << first
             << ".." << end - 1 << " of " << reader->size() << ", config " << config_used << ", "
             << params.threads << (params.threads == 1 ? " thread" : " threads") << " -> " << map_dir.string()
             << "\n";
 
   RadarSlam slam(params);
-  std::optional<KeyframeMap> base;
-  if (extend_arg.isSet()) {
-    const fs::path base_dir = resolveMapPath(extend_arg.getValue());
-    base = loadMap(base_dir);
+  if (base) {
     std::cerr << "map: extending " << base_dir.string() << " (" << base->keyframes.size() << " keyframes)\n";
     slam.extend(*base);
   }

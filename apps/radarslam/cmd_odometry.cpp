@@ -10,6 +10,7 @@
 #include <string>
 
 #include <radarslam/core/errors.h>
+#include <radarslam/core/input_file.h>
 #include <radarslam/core/log.h>
 #include <radarslam/core/yaml_params.h>
 #include <radarslam/eval/evaluate.h>
@@ -68,6 +69,7 @@ int runOdometry(int argc, char** argv) {
   std::string config_used = "built-in defaults";
   const std::optional<fs::path> config = findConfig(config_arg.getValue(), reader->kind());
   if (config) {
+    requireRegularFile(config->string());
     const YamlParams yaml = YamlParams::fromFile(config->string());
     // The whole parameter set is validated (a config file also holds the slam: section).
     SlamParams all;

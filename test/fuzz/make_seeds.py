@@ -120,3 +120,18 @@ put("yaml_params", "modules.yaml",
     "odometry:\n  matching:\n    radius_m: 5\n  tracking:\n    min_inliers: 10\n"
     "m2dp:\n  rings: 8\nloop_detector:\n  max_candidates: 5\nloop_verifier:\n  min_inliers: 20\n"
     "pose_graph:\n  max_iterations: 50\n")
+
+
+def radar_scan_sample(azimuths=16, bins=16, first_ns=1600000000000000000, step_ns=15625000):
+    """A plausible RadarScan sample in the field layout fuzz_dds_radar_scan.cpp decodes."""
+    import math
+    stamps = [first_ns + a * step_ns for a in range(azimuths)]
+    mid = stamps[0] // 2 + stamps[-1] // 2
+    head = struct.pack("<IIddiIB", azimuths, bins, 0.0438, 0.0219, mid // 10**9, mid % 10**9, 5) + b"radar"
+    head += struct.pack("<HHHI", azimuths, azimuths, azimuths, azimuths * bins)
+    return (head + struct.pack("<%dq" % azimuths, *stamps) +
+            struct.pack("<%dd" % azimuths, *[2 * math.pi * a / azimuths for a in range(azimuths)]) +
+            bytes([1] * azimuths) + bytes((a * 31 + b * 17) % 256 for a in range(azimuths) for b in range(bins)))
+
+
+put("dds_radar_scan", "scan_16x16.bin", radar_scan_sample())

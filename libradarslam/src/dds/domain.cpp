@@ -8,6 +8,7 @@
 
 #include "c_types.h"
 #include "radarslam/core/errors.h"
+#include "radarslam/core/input_file.h"
 
 namespace radarslam::dds {
 
@@ -30,6 +31,7 @@ TimeMsg toTimeMsg(StampNs t) {
 StampNs fromTimeMsg(const TimeMsg& t) { return static_cast<StampNs>(t.sec) * kNsPerSec + t.nanosec; }
 
 std::string readConfigFile(const std::filesystem::path& path) {
+  requireRegularFile(path, "cannot read the DDS configuration file (not found)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), "cannot read the DDS configuration file");
   std::ostringstream ss;

@@ -1,6 +1,7 @@
 #include "radarslam/dds/scan_messages.h"
 
 #include "radarslam/core/errors.h"
+#include "radarslam/obs/scan_checks.h"
 
 namespace radarslam::dds {
 
@@ -36,7 +37,7 @@ CObservationRadarScan::Ptr scanFromMessage(const RadarScanMsg& msg) {
   scan->azimuth_valid = msg.azimuth_valid;
   scan->sensorLabel = msg.header.frame_id;
   scan->updateReferenceTime();
-  if (const std::string problem = scan->checkConsistency(); !problem.empty())
+  if (const std::string problem = checkScanPlausible(*scan); !problem.empty())
     throw InputError("RadarScan message", problem);
   return scan;
 }

@@ -1,13 +1,9 @@
 #include "radarslam/dds/scan_subscriber.h"
 
-#include "radarslam/core/errors.h"
-#include "radarslam/core/log.h"
-#include "radarslam/dds/scan_messages.h"
-
 namespace radarslam::dds {
 
 ScanSubscriber::ScanSubscriber(Domain& domain, const std::string& topic, std::int32_t depth)
-    : sub_(domain, topic, TopicQos::stream(depth)) {}
+    : sub_(domain, topic, TopicQos::stream(depth)), filter_(topic) {}
 
 CObservationRadarScan::Ptr ScanSubscriber::next(std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
@@ -16,11 +12,7 @@ CObservationRadarScan::Ptr ScanSubscriber::next(std::chrono::milliseconds timeou
         std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     auto msg = sub_.take(std::max(left, std::chrono::milliseconds(0)));
     if (!msg) return nullptr;
-    try {
-      return scanFromMessage(*msg);
-    } catch (const InputError& e) {
-      logger().logFmt(mrpt::system::LVL_WARN, "skipping a radar scan: %s", e.what());
-    }
+    if (auto scan = filter_.accept(*msg)) return scan;
   }
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "radarslam/core/errors.h"
+#include "radarslam/core/input_file.h"
 #include "text_util.h"
 
 namespace radarslam::io_detail {
@@ -80,6 +81,7 @@ PngSize checkChunks(std::span<const unsigned char> bytes, const std::filesystem:
 }  // namespace
 
 PngSize readPngSize(const std::filesystem::path& file) {
+  requireRegularFile(file, "cannot open file (missing or unreadable)");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string(), "cannot open file (missing or unreadable)");
   std::array<unsigned char, 24> head{};

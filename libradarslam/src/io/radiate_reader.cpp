@@ -7,10 +7,12 @@
 // guess is at most half a sweep whichever convention the recorder used) and spread the azimuths
 // evenly over one sweep = the median interval between consecutive frames (robust to dropped frames).
 #include <algorithm>
+#include <map>
 #include <string>
 
 #include "polar_png.h"
 #include "radarslam/core/errors.h"
+#include "radarslam/core/log.h"
 #include "readers.h"
 #include "text_util.h"
 
@@ -22,6 +24,8 @@ std::vector<IndexEntry> readFrameTimes(const std::filesystem::path& root) {
   const auto file = root / "Navtech_Polar.txt";
   auto in = openText(file, "Navtech_Polar.txt (RADIATE frame times)");
   std::vector<IndexEntry> index;
+  std::map<long long, StampNs> frame_times;  // frame number -> its time, to catch repeated lines
+  std::size_t duplicates = 0;
   forEachDataLine(in, file, ' ', 0, [&](const DataLine& d) {
     const std::string& where = d.where;
     const auto& f = d.fields;
@@ -29,11 +33,22 @@ std::vector<IndexEntry> readFrameTimes(const std::filesystem::path& root) {
     if (f.size() != 4 || f[0] != "Frame:" || f[2] != "Time:" ||
         !parseSecondsDotFraction(std::string(f[3]), t))
       throw InputError(where, "malformed line: expected 'Frame: <number> Time: <seconds>.<nanoseconds>'");
-    parseInt(f[1], where, "frame number");
+    const long long frame = parseInt(f[1], where, "frame number");
+    if (const auto seen = frame_times.find(frame); seen != frame_times.end()) {
+      if (seen->second != t)
+        throw InputError(where, "frame " + std::string(f[1]) + " listed again with a different time");
+      ++duplicates;  // the same line twice: read the frame once
+      return;
+    }
+    frame_times.emplace(frame, t);
     if (!index.empty() && t <= index.back().stamp) throw InputError(where, "frame times are not increasing");
     index.push_back({t, root / "Navtech_Polar" / (std::string(f[1]) + ".png")});
   });
   if (index.empty()) throw InputError(file.string(), "no frames");
+  if (duplicates > 0)
+    logger().logFmt(mrpt::system::LVL_WARN,
+                    "%s: %zu duplicate frame line(s) skipped (each frame is read once)",
+                    file.string().c_str(), duplicates);
   return index;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "radarslam/core/errors.h"
+#include "radarslam/core/input_file.h"
 #include "radarslam/obs/registration.h"
 #include "readers.h"
 
@@ -23,6 +24,7 @@ namespace {
 class CountingGzInput : public mrpt::io::CStream {
  public:
   explicit CountingGzInput(const std::filesystem::path& file) {
+    requireRegularFile(file, "cannot open rawlog: file not found");
     std::string err;
     if (!gz_.open(file.string(), err)) throw InputError(file.string(), "cannot open rawlog: " + err);
   }

@@ -7,10 +7,12 @@
 #include <limits>
 
 #include "radarslam/core/errors.h"
+#include "radarslam/core/input_file.h"
 
 namespace radarslam::io_detail {
 
 std::ifstream openText(const std::filesystem::path& path, const char* what) {
+  requireRegularFile(path, (std::string("cannot open ") + what).c_str());
   std::ifstream in(path);
   if (!in) throw InputError(path.string(), std::string("cannot open ") + what);
   return in;
@@ -80,6 +82,7 @@ StampNs parseStamp(std::string_view text, const std::string& where, const char* 
 }
 
 std::vector<unsigned char> readBytes(const std::filesystem::path& path) {
+  requireRegularFile(path, "cannot open file (missing or unreadable)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), "cannot open file (missing or unreadable)");
   in.seekg(0, std::ios::end);

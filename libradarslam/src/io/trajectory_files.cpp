@@ -14,6 +14,7 @@
 
 #include "radarslam/core/atomic_file.h"
 #include "radarslam/core/errors.h"
+#include "radarslam/core/input_file.h"
 #include "radarslam/core/log.h"
 
 namespace radarslam {
@@ -42,6 +43,7 @@ std::string at(const fs::path& file, std::size_t line) {
 
 /// The data lines of a text file: blank lines and '#' comments skipped, fields split on whitespace.
 std::vector<Line> readDataLines(const fs::path& file) {
+  requireRegularFile(file);
   std::ifstream in(file);
   if (!in) throw InputError(file.string(), fs::exists(file) ? "cannot read file" : "file not found");
   std::vector<Line> lines;

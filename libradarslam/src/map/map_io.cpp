@@ -11,8 +11,11 @@
 #include <sstream>
 
 #include "binary_codec.h"
+#include "manifest_strings.h"
+#include "map_validation.h"
 #include "radarslam/core/atomic_file.h"
 #include "radarslam/core/errors.h"
+#include "radarslam/core/input_file.h"
 #include "radarslam/core/log.h"
 #include "radarslam/core/yaml_params.h"
 #include "radarslam/map/sha256.h"
@@ -191,12 +194,25 @@ void decodeGraph(const std::string& bytes, const std::string& file, KeyframeMap&
 
 // --- manifest --------------------------------------------------------------------------------
 
-// Manifest strings are double-quoted; characters that would need YAML escapes are replaced.
-std::string quoted(const std::string& s) {
-  std::string out(1, '"');
-  for (char c : s) out.push_back((c == '"' || c == '\\' || c == '\n' || c == '\r') ? '_' : c);
-  out.push_back('"');
+std::string quoted(const std::string& s) { return mapcodec::yamlQuoted(s); }
+
+// `key: "<escaped>"`, plus `key_hex: "<bytes>"` when YAML cannot carry the string exactly.
+std::string stringEntry(const char* key, const std::string& value) {
+  std::string out = std::string(key) + ": " + quoted(value) + "\n";
+  if (mapcodec::needsHexTwin(value))
+    out += std::string(key) + "_hex: " + quoted(mapcodec::hexEncode(value)) + "\n";
   return out;
+}
+
+// The manifest string `key`, from its hex twin if there is one.
+void readString(const YamlParams& manifest, const std::string& mp, const std::string& key, std::string& out) {
+  manifest.get(key, out);
+  if (!manifest.has(key + "_hex")) return;
+  std::string hex;
+  manifest.get(key + "_hex", hex);
+  const auto bytes = mapcodec::hexDecode(hex);
+  if (!bytes) throw InputError(mp, key + "_hex: expected an even number of hex digits");
+  out = *bytes;
 }
 
 std::string utcText(StampNs t) {
@@ -225,9 +241,8 @@ std::string manifestText(const KeyframeMap& map, StampNs created, const std::vec
     << "format_version: " << kMapFormatVersion << "\n"
     << "created_ns: " << created << "\n"
     << "created_utc: " << quoted(utcText(created)) << "\n"
-    << "software_version: " << quoted(map.meta.software_version) << "\n"
-    << "source_dataset: " << quoted(map.meta.source_dataset) << "\n"
-    << "sensor:\n"
+    << stringEntry("software_version", map.meta.software_version)
+    << stringEntry("source_dataset", map.meta.source_dataset) << "sensor:\n"
     << "  num_azimuths: " << map.meta.sensor.num_azimuths << "\n"
     << "  num_bins: " << map.meta.sensor.num_bins << "\n"
     << "  range_resolution_m: " << fmtDouble(map.meta.sensor.range_resolution_m) << "\n"
@@ -254,6 +269,7 @@ void writeFileSynced(const fs::path& path, const std::string& bytes) {
 }
 
 std::string readWholeFile(const fs::path& path) {
+  requireRegularFile(path, "missing or unreadable map file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), "missing or unreadable map file");
   in.seekg(0, std::ios::end);
@@ -377,12 +393,13 @@ KeyframeMap loadMap(const fs::path& dir_in) {
     } else if (!fs::exists(dir, ec)) {
       throw InputError(dir.string(), "no map here (directory does not exist)");
     } else {
-      throw InputError((dir / "manifest.yaml").string(), "missing: not a radarslam map directory");
+      requireRegularFile(dir / "manifest.yaml", "missing: not a radarslam map directory");
     }
   }
 
   const fs::path manifest_path = dir / "manifest.yaml";
   const std::string mp = manifest_path.string();
+  requireRegularFile(manifest_path);
   const YamlParams manifest = YamlParams::fromFile(mp);
   if (!manifest.has("format_version")) throw InputError(mp, "format_version missing");
   unsigned version = 0;
@@ -398,13 +415,14 @@ KeyframeMap loadMap(const fs::path& dir_in) {
   std::string created = "0";
   manifest.get("created_ns", created);
   map.meta.created_ns = static_cast<StampNs>(parseU64(created, mp, "created_ns"));
-  manifest.get("software_version", map.meta.software_version);
-  manifest.get("source_dataset", map.meta.source_dataset);
+  readString(manifest, mp, "software_version", map.meta.software_version);
+  readString(manifest, mp, "source_dataset", map.meta.source_dataset);
   const YamlParams sensor = manifest.section("sensor");
   sensor.get("num_azimuths", map.meta.sensor.num_azimuths);
   sensor.get("num_bins", map.meta.sensor.num_bins);
   sensor.get("range_resolution_m", map.meta.sensor.range_resolution_m);
   sensor.get("range_offset_m", map.meta.sensor.range_offset_m);
+  mapcodec::validateSensor(map.meta.sensor, mp);
 
   const YamlParams files = manifest.section("files");
   for (const auto& entry : kFiles) {
@@ -457,6 +475,9 @@ KeyframeMap loadMap(const fs::path& dir_in) {
   checkCount("keyframes", map.keyframes.size());
   checkCount("points", map.points.size());
   checkCount("edges", map.edges.size());
+  mapcodec::validateKeyframes(map, (dir / "keyframes.bin").string());
+  mapcodec::validatePoints(map, (dir / "points.bin").string());
+  mapcodec::validateGraph(map, (dir / "graph.bin").string());
   return map;
 }
 

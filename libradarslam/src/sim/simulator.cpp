@@ -4,12 +4,14 @@
 #include <future>
 
 #include "radarslam/core/errors.h"
+#include "radarslam/core/input_file.h"
 #include "radarslam/core/yaml_params.h"
 #include "radarslam/io/oxford_writer.h"
 
 namespace radarslam::sim {
 
 void loadSimulationConfig(const std::string& path, SimulationConfig& c) {
+  requireRegularFile(path);
   const YamlParams y = YamlParams::fromFile(path);
   int seed = static_cast<int>(c.seed);
   y.get("seed", seed);

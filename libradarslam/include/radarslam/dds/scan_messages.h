@@ -12,7 +12,7 @@ namespace radarslam::dds {
 RadarScanMsg scanMessage(const CObservationRadarScan& scan, const std::string& frame_id = "radar");
 
 /// Throws InputError("RadarScan message", problem) if the sizes do not match the geometry or the
-/// result fails CObservationRadarScan::checkConsistency(). sensorLabel = header.frame_id.
+/// result fails checkScanPlausible() (obs/scan_checks.h). sensorLabel = header.frame_id.
 CObservationRadarScan::Ptr scanFromMessage(const RadarScanMsg& msg);
 
 }  // namespace radarslam::dds
