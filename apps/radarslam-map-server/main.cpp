@@ -101,8 +101,7 @@ int main(int argc, char** argv) {
     std::cerr << "radarslam-map-server: error: " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {
-    const std::string what = e.what();
-    std::cerr << "radarslam-map-server: error: " << what.substr(0, what.find('\n')) << "\n";
+    std::cerr << "radarslam-map-server: error: " << radarslam::describeException(e) << "\n";
     return 1;
   }
 }

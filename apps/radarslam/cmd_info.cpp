@@ -22,6 +22,28 @@ std::string fmt(const char* format, double v) {
   return buf;
 }
 
+// Which optional file would have held the ground truth, and what its absence disables.
+std::string missingGroundTruth(DatasetKind kind) {
+  const char* file = nullptr;
+  switch (kind) {
+    case DatasetKind::Oxford:
+      file = "gt/radar_odometry.csv";
+      break;
+    case DatasetKind::MulRanOxfordForm:
+    case DatasetKind::MulRanPolar:
+      file = "global_pose.csv";
+      break;
+    case DatasetKind::Boreas:
+      file = "applanix/radar_poses.csv";
+      break;
+    case DatasetKind::Radiate:
+    case DatasetKind::Rawlog:
+      return " (this layout carries none)";
+  }
+  return std::string(" (") + file +
+         " missing: odometry, map and localize run, but evaluate nothing; map-synth needs it)";
+}
+
 int runInfo(int argc, char** argv) {
   CommandLine cmd("info",
                   "Describes a radar dataset directory or .rawlog: dataset kind, sensor, number of scans, "
@@ -85,7 +107,7 @@ int runInfo(int argc, char** argv) {
               << fmt("%.1f", toSeconds(gt.back().stamp - gt.front().stamp)) << " s, path length "
               << fmt("%.3f", pathLength(gt) / 1000.0) << " km\n";
   } else {
-    std::cout << "ground truth:  no\n";
+    std::cout << "ground truth:  no" << missingGroundTruth(reader->kind()) << "\n";
   }
 
   if (check_arg.getValue()) {

@@ -24,13 +24,14 @@ struct Geometry {
 };
 
 // Two scans in the Boreas layout: us stamps, file name = middle azimuth (row M/2 - 1).
-void writeBoreasSequence(const std::filesystem::path& root, const Geometry& g, int azimuths) {
+void writeBoreasSequence(const std::filesystem::path& root, const Geometry& g, int azimuths,
+                         bool with_applanix = true) {
   for (int s = 0; s < 2; ++s) {
     const auto sweep = test::makeSweep(azimuths, g.t0_us + s * 250'000, 625, 7);
     test::writeOxfordStylePng(root / "radar" / (std::to_string(sweep.stamps[azimuths / 2 - 1]) + ".png"),
                               sweep.stamps, sweep.encoders, sweep.valid, g.bins);
   }
-  std::filesystem::create_directories(root / "applanix");
+  if (with_applanix) std::filesystem::create_directories(root / "applanix");
 }
 }  // namespace
 
@@ -83,6 +84,20 @@ TEST_P(BoreasGeometry, SyntheticScansDecodeWithTheRightGeometry) {
   EXPECT_DOUBLE_EQ(scan->range_offset_m, 0.0);
 }
 
+// Downloaded radar-only (no applanix/, no calib/): recognised from the scans themselves.
+TEST_P(BoreasGeometry, RadarOnlyFolderIsRecognisedFromTheScans) {
+  const Geometry g = GetParam();
+  test::TempDir tmp;
+  writeBoreasSequence(tmp.path(), g, 20, /*with_applanix=*/false);
+  const auto reader = openDataset(tmp.path());
+  EXPECT_EQ(reader->kind(), DatasetKind::Boreas);
+  EXPECT_EQ(reader->sensorName(), g.expected_sensor);
+  EXPECT_FALSE(reader->hasGroundTruth());
+  ASSERT_EQ(reader->size(), 2u);
+  EXPECT_EQ(reader->readScan(1)->num_bins, static_cast<std::uint32_t>(g.bins));
+  EXPECT_DOUBLE_EQ(reader->readScan(1)->range_resolution_m, g.expected_resolution);
+}
+
 INSTANTIATE_TEST_SUITE_P(
     AllThree, BoreasGeometry,
     ::testing::Values(Geometry{"CIR204_before_upgrade", 1628184886551599LL, 3360, 0.0596, "Navtech CIR204-H"},
@@ -90,6 +105,15 @@ INSTANTIATE_TEST_SUITE_P(
                                0.04381, "Navtech CIR204-H"},
                       Geometry{"RAS6", 1733248400LL * 1'000'000, 6848, 0.04381, "Navtech RAS6"}),
     [](const auto& param_info) { return std::string(param_info.param.name); });
+
+// radar/ alone whose scans are not of a Boreas geometry is not guessed to be Boreas.
+TEST(BoreasDetection, RadarFolderOfOtherScansIsStillAnError) {
+  test::TempDir tmp;
+  const auto sweep = test::makeSweep(20, 1628184886551599LL, 625, 7);
+  test::writeOxfordStylePng(tmp / "radar" / (std::to_string(sweep.stamps[9]) + ".png"), sweep.stamps,
+                            sweep.encoders, sweep.valid, 3768);  // Oxford width, but no radar.timestamps
+  test::expectInputError([&] { openDataset(tmp.path()); }, "radar.timestamps", "missing radar.timestamps");
+}
 
 namespace {
 void checkBoreasGroundTruth(const std::filesystem::path& csv, std::size_t expected_rows,

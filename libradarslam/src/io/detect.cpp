@@ -1,6 +1,7 @@
 // Dataset kind from the directory layout (FORMATS.md section 5).
 #include <string>
 
+#include "png_file.h"
 #include "radarslam/core/errors.h"
 #include "readers.h"
 
@@ -18,9 +19,32 @@ bool isFile(const fs::path& p) {
   return fs::is_regular_file(p, ec);
 }
 
+// A Boreas sequence downloaded radar-only (pyboreas fetches sensors separately; ground truth is
+// optional): radar/ holds <t_us>.png scans whose width is 11 metadata columns + the bins of a
+// Boreas geometry (CIR204-H 3360, RAS6 6848). The first scan (by name) decides.
+bool looksLikeBoreasRadarOnly(const fs::path& radar_dir) {
+  std::error_code ec;
+  fs::path first;
+  for (fs::directory_iterator it(radar_dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const fs::path& p = it->path();
+    if (p.extension() != ".png") continue;
+    if (first.empty() || p.filename() < first.filename()) first = p;
+  }
+  if (first.empty()) return false;
+  const std::string stem = first.stem().string();
+  if (stem.size() != 16 || stem.find_first_not_of("0123456789") != std::string::npos) return false;
+  try {
+    const io_detail::PngSize size = io_detail::readPngSize(first);
+    return size.width == 3360 + 11 || size.width == 6848 + 11;
+  } catch (const InputError&) {
+    return false;  // not a readable PNG: not recognised here (the readers report bad scans)
+  }
+}
+
 const char* kExpected =
     "expected radar/ + radar.timestamps (Oxford), polar_oxford_form/ or sensor_data/radar/polar/ (MulRan), "
-    "radar/ + applanix/ (Boreas), Navtech_Polar/ + Navtech_Polar.txt (RADIATE), or a .rawlog file";
+    "radar/ + applanix/ or radar/ of Boreas scans alone (Boreas), Navtech_Polar/ + Navtech_Polar.txt "
+    "(RADIATE), or a .rawlog file";
 }  // namespace
 
 std::string toString(DatasetKind kind) {
@@ -63,10 +87,13 @@ DatasetKind detectDatasetKind(const fs::path& path) {
                        "missing RADIATE frame times (Navtech_Polar.txt)");
     return DatasetKind::Radiate;
   }
-  if (isDir(path / "radar"))
+  if (isDir(path / "radar")) {
+    if (looksLikeBoreasRadarOnly(path / "radar")) return DatasetKind::Boreas;
     throw InputError(
         (path / "radar.timestamps").string(),
-        "missing radar.timestamps: radar/ needs radar.timestamps (Oxford) or applanix/ (Boreas)");
+        "missing radar.timestamps: radar/ needs radar.timestamps (Oxford), applanix/ (Boreas), or "
+        "Boreas scans (<16-digit microsecond stamp>.png, 3360 or 6848 bins + 11 columns)");
+  }
   throw InputError(path.string(), std::string("unknown dataset layout; ") + kExpected);
 }
 
