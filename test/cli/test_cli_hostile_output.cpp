@@ -151,7 +151,7 @@ radarslam::test::TempDir* HostileOutput::root_ = nullptr;
 
 // --- class 1: -o replaces only what radarslam created ---------------------------------------
 
-TEST_F(HostileOutput, MapSynthRefusesADirectoryThatIsNotAMap) {
+TEST_F(HostileOutput, MapSynthRefusesADirectoryThatIsNotAMapButReplacesItsOwnMap) {
   const fs::path dir = tmp_ / "notamap";
   fs::create_directories(dir / "keep");
   std::ofstream(dir / "keep" / "p.txt") << "precious\n";
@@ -160,6 +160,15 @@ TEST_F(HostileOutput, MapSynthRefusesADirectoryThatIsNotAMap) {
   // --force never deletes the contents of a directory that is not a map.
   expectOneLineError(run("map-synth " + q(small()) + " -o " + q(dir) + " --force"), dir.string());
   EXPECT_EQ(snapshot(dir), before);
+
+  // Its own map is what -o replaces, without --force.
+  const fs::path map = tmp_ / "m";
+  ASSERT_EQ(run("map-synth " + q(small()) + " -o " + q(map) + " --max-keyframes 1").code, 0);
+  ASSERT_EQ(radarslam::loadMap(map).keyframes.size(), 1u);
+  const CliResult r = run("map-synth " + q(small()) + " -o " + q(map) + " --every 0.2");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_GT(radarslam::loadMap(map).keyframes.size(), 1u);
+  EXPECT_TRUE(leftovers(tmp_.path(), "m").empty());
 }
 
 TEST_F(HostileOutput, MapRefusesToWriteOverItsInputDataset) {
@@ -184,16 +193,6 @@ TEST_F(HostileOutput, AMapReplacesARegularFileOnlyWithForce) {
   const CliResult r = run("map-synth " + q(small()) + " -o " + q(file) + " --force");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_GT(radarslam::loadMap(file).keyframes.size(), 0u);
-}
-
-TEST_F(HostileOutput, MapSynthReplacesItsOwnMap) {
-  const fs::path map = tmp_ / "m";
-  ASSERT_EQ(run("map-synth " + q(small()) + " -o " + q(map) + " --max-keyframes 1").code, 0);
-  ASSERT_EQ(radarslam::loadMap(map).keyframes.size(), 1u);
-  const CliResult r = run("map-synth " + q(small()) + " -o " + q(map) + " --every 0.2");
-  ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_GT(radarslam::loadMap(map).keyframes.size(), 1u);
-  EXPECT_TRUE(leftovers(tmp_.path(), "m").empty());
 }
 
 TEST_F(HostileOutput, OtherCommandsRefuseOverlappingOutputs) {
