@@ -81,7 +81,9 @@ TemporaryPath::TemporaryPath(const fs::path& path) {
   Registry& r = registry();
   const std::lock_guard lock(r.mutex);
   id_ = r.next_id++;
-  r.paths.emplace(id_, fs::absolute(path));
+  std::error_code ec;  // absolute: a later chdir must not change what is removed
+  const fs::path abs = fs::absolute(path, ec);
+  r.paths.emplace(id_, ec ? path : abs);
 }
 
 TemporaryPath::~TemporaryPath() {
