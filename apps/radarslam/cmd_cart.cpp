@@ -10,6 +10,7 @@
 #include <radarslam/core/atomic_file.h>
 #include <radarslam/core/errors.h>
 #include <radarslam/core/log.h>
+#include <radarslam/core/output_path.h>
 #include <radarslam/io/dataset.h>
 #include <radarslam/radar/cartesian.h>
 #include <radarslam/radar/peak_cloud.h>
@@ -44,6 +45,8 @@ int runCart(int argc, char** argv) {
 
   const std::filesystem::path path = path_arg.getValue(), out = out_arg.getValue();
   if (!std::filesystem::exists(path)) throw InputError(path.string(), "no such file or directory");
+  checkNoOverlap(path, out);
+  checkFileOutput(out, "OUT");
   std::string ext = out.extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".png") throw InputError(out.string(), "output must be a .png file");

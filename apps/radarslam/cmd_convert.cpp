@@ -8,6 +8,7 @@
 
 #include <radarslam/core/atomic_file.h>
 #include <radarslam/core/errors.h>
+#include <radarslam/core/output_path.h>
 #include <radarslam/io/dataset.h>
 #include <radarslam/io/rawlog_writer.h>
 
@@ -49,7 +50,8 @@ int runConvert(int argc, char** argv) {
       "radarslam CObservationRadarScan observations (gzip level 1, written atomically).");
   TCLAP::UnlabeledValueArg<std::string> path_arg("path", "Dataset directory or .rawlog file", true, "",
                                                  "PATH", cmd.tclap());
-  TCLAP::UnlabeledValueArg<std::string> out_arg("out", "Output .rawlog file", true, "", "OUT", cmd.tclap());
+  TCLAP::UnlabeledValueArg<std::string> out_arg(
+      "out", "Output .rawlog file (a regular file there is replaced)", true, "", "OUT", cmd.tclap());
   TCLAP::SwitchArg skip_arg("", "skip-bad-scans", "Warn about and skip scans that fail to decode or check",
                             cmd.tclap());
   TCLAP::ValueArg<long long> first_arg("", "first", "First scan index to convert (0-based)", false, 0, "N",
@@ -68,10 +70,9 @@ int runConvert(int argc, char** argv) {
   if (res_arg.isSet() && !(res_arg.getValue() > 0.0))
     throw InputError(where, "--range-resolution must be > 0");
   const std::filesystem::path path = path_arg.getValue(), out = out_arg.getValue();
+  checkNoOverlap(path, out);
+  checkFileOutput(out, "OUT");
   if (out.extension() != ".rawlog") throw InputError(out.string(), "output must be a .rawlog file");
-  std::error_code ec;
-  if (std::filesystem::exists(path, ec) && std::filesystem::equivalent(path, out, ec))
-    throw InputError(out.string(), "output is the input");
 
   ReaderOptions options;
   options.range_resolution_m = res_arg.getValue();
@@ -94,13 +95,11 @@ int runConvert(int argc, char** argv) {
     }
     writer.close();
     written = writer.count();
+    if (written == 0)  // thrown here, the previous OUT stays as it was
+      throw InputError(path.string(),
+                       "no scan could be converted (" + std::to_string(it.skipped()) + " skipped)");
   });
   progress.update(it.total(), true);
-  if (written == 0) {
-    std::filesystem::remove(out, ec);
-    throw InputError(path.string(),
-                     "no scan could be converted (" + std::to_string(it.skipped()) + " skipped)");
-  }
   std::cout << "converted " << written << " scans of " << toString(reader->kind()) << " " << path.string()
             << " to " << out.string() << " in " << progress.elapsed() << " s; skipped " << it.skipped()
             << " bad scan(s)\n";

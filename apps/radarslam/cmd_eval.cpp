@@ -9,6 +9,7 @@
 
 #include <radarslam/core/errors.h>
 #include <radarslam/core/log.h>
+#include <radarslam/core/output_path.h>
 #include <radarslam/eval/evaluate.h>
 #include <radarslam/eval/plots.h>
 #include <radarslam/eval/report.h>
@@ -109,6 +110,17 @@ int runEval(int argc, char** argv) {
     throw InputError(est_path.string(), "EST must be a trajectory file, not a directory");
   if (fs::is_directory(gt_path) && (gt_format_arg.isSet() || gt_stamps_arg.isSet()))
     throw InputError(where, "--gt-format/--gt-stamps apply to a GT file, not to a dataset directory");
+
+  if (json_arg.isSet()) {
+    checkNoOverlap(est_path, json_arg.getValue());
+    checkNoOverlap(gt_path, json_arg.getValue());
+    checkFileOutput(json_arg.getValue(), "--json");
+  }
+  if (plot_arg.isSet()) {
+    checkNoOverlap(est_path, plot_arg.getValue());
+    checkNoOverlap(gt_path, plot_arg.getValue());
+    checkDirectoryOutput(plot_arg.getValue(), "--plot-dir");
+  }
 
   const Trajectory est = readTrajectoryFile(est_path, est_options);
   const Trajectory gt = loadGroundTruth(gt_path, gt_options);

@@ -22,6 +22,7 @@
 #include <radarslam/core/errors.h>
 #include <radarslam/core/input_file.h>
 #include <radarslam/core/log.h>
+#include <radarslam/core/output_path.h>
 #include <radarslam/core/yaml_params.h>
 #include <radarslam/frontend/odometry.h>
 #include <radarslam/io/dataset.h>
@@ -132,13 +133,28 @@ int runLocalize(int argc, char** argv) {
   const bool from_dds = dds_opts.scan_topic.has_value();
   if (from_dds && first_arg.getValue() != 0) throw InputError(where, "--first needs a dataset, not dds:");
   if (!from_dds && !fs::exists(dir)) throw InputError(dir.string(), "no such file or directory");
-  if (fs::is_directory(out)) throw InputError(out.string(), "output is a directory, expected a file name");
+  const fs::path map_dir = resolveMapPath(map_arg.getValue());
+  checkNoOverlap(map_dir, out);
+  if (!from_dds) checkNoOverlap(dir, out);
+  checkFileOutput(out);
+  // The per-scan side file FILE.csv goes next to a regular FILE (not next to /dev/null).
+  const bool side_file = !isSpecialFile(followSymlinks(out));
+  fs::path side_path = out;
+  side_path += ".csv";
+  if (side_file) {
+    if (!from_dds) checkNoOverlap(dir, side_path);
+    checkFileOutput(side_path);
+  }
+  if (eval_arg.isSet()) {
+    checkNoOverlap(map_dir, eval_arg.getValue());
+    if (!from_dds) checkNoOverlap(dir, eval_arg.getValue());
+    checkDirectoryOutput(eval_arg.getValue(), "--eval-dir");
+  }
 
   // The DDS participant first: discovery overlaps with loading the map.
   std::unique_ptr<LocalizeDds> dds;
   if (from_dds || dds_opts.publish) dds = std::make_unique<LocalizeDds>(dds_opts);
 
-  const fs::path map_dir = resolveMapPath(map_arg.getValue());
   const auto t_load = Clock::now();
   const KeyframeMap map = loadMap(map_dir);
   if (map.keyframes.empty()) throw InputError(map_dir.string(), "the map has no keyframe");
@@ -323,9 +339,7 @@ int runLocalize(int argc, char** argv) {
                      from_dds ? "no scan received on " + *dds_opts.scan_topic + " within --dds-timeout"
                               : std::string("no scan could be read"));
   writeTumTrajectory(out, poses);
-  fs::path side_path = out;
-  side_path += ".csv";
-  writeTextAtomically(side_path, side.str());
+  if (side_file) writeTextAtomically(side_path, side.str());
 
   const double n = static_cast<double>(done);
   std::printf("localize summary\n");
@@ -343,7 +357,7 @@ int runLocalize(int argc, char** argv) {
       n / elapsed, 1000 * elapsed / n, total.odometry / n, total.cloud / n, total.tracking / n,
       total.global / n, load_s, init_s, 1000 * cpu_s / n, n / cpu_s);
   std::printf("  poses          %s (%zu localised scans), per-scan details %s\n", out.string().c_str(),
-              localised, side_path.string().c_str());
+              localised, side_file ? side_path.string().c_str() : "not written (-o is a special file)");
   if (dds_opts.publish)
     std::printf("  published      %zu poses on %s (domain %u)\n", dds->posesPublished(), ddsPoseTopic(),
                 dds_opts.domain_id);

@@ -17,6 +17,7 @@
 #include <radarslam/core/errors.h>
 #include <radarslam/core/input_file.h>
 #include <radarslam/core/log.h>
+#include <radarslam/core/output_path.h>
 #include <radarslam/core/version.h>
 #include <radarslam/core/yaml_params.h>
 #include <radarslam/eval/evaluate.h>
@@ -69,8 +70,9 @@ int runMap(int argc, char** argv) {
       "preview), loops.csv and summary.txt; with ground truth also eval/ (report.json and plots).");
   TCLAP::UnlabeledValueArg<std::string> dir_arg(
       "dataset", "Dataset directory (any supported layout) or .rawlog", true, "", "DIR", cmd.tclap());
-  TCLAP::ValueArg<std::string> out_arg("o", "output", "Map name (maps/NAME) or directory", true, "", "MAP",
-                                       cmd.tclap());
+  TCLAP::ValueArg<std::string> out_arg("o", "output",
+                                       "Map name (maps/NAME) or directory; an existing map there is replaced",
+                                       true, "", "MAP", cmd.tclap());
   TCLAP::ValueArg<std::string> config_arg("", "config",
                                           "Parameters (YAML; default: config/<sensor>.yaml for the detected "
                                           "dataset kind, or built-in defaults)",
@@ -85,14 +87,19 @@ int runMap(int argc, char** argv) {
   TCLAP::ValueArg<long long> first_arg("", "first", "First scan index (0-based)", false, 0, "N", cmd.tclap());
   TCLAP::ValueArg<long long> count_arg("", "count", "Number of scans (default: to the end)", false, -1, "N",
                                        cmd.tclap());
-  TCLAP::ValueArg<double> grid_res_arg("", "grid-resolution", "Preview grid cell size, m (default 0.5)",
-                                       false, 0.5, "M", cmd.tclap());
+  TCLAP::ValueArg<double> grid_res_arg("", "grid-resolution",
+                                       "Preview grid cell size, m (0.01..100, default 0.5)", false, 0.5, "M",
+                                       cmd.tclap());
   TCLAP::ValueArg<std::string> extend_arg(
       "", "extend",
       "Extend this map (name in maps/ or a path) with the new session: it is relocalised in the map by its "
       "first verified loop and merged into one pose graph; the result (both sessions) is written to -o, "
       "which may be the same map",
       false, "", "MAP", cmd.tclap());
+  TCLAP::SwitchArg force_arg("", "force",
+                             "Let -o replace an empty directory or a regular file (a map is always "
+                             "replaced; a non-empty directory that is not a map never is)",
+                             cmd.tclap());
   TCLAP::SwitchArg quiet_arg("q", "quiet", "No progress line", cmd.tclap());
   cmd.parse(argc, argv);
 
@@ -100,12 +107,16 @@ int runMap(int argc, char** argv) {
   if (first_arg.getValue() < 0) throw InputError(where, "--first must be >= 0");
   if (count_arg.isSet() && count_arg.getValue() < 1) throw InputError(where, "--count must be >= 1");
   if (threads_arg.isSet() && threads_arg.getValue() < 1) throw InputError(where, "--threads must be >= 1");
-  if (!(grid_res_arg.getValue() > 0)) throw InputError(where, "--grid-resolution must be > 0");
+  // A grid finer than 1 cm would not fit in memory for any real map (checked again on the map's
+  // extent when the grid is made, before the map is swapped into place).
+  if (!(grid_res_arg.getValue() >= 0.01 && grid_res_arg.getValue() <= 100))
+    throw InputError(where, "--grid-resolution must be in [0.01, 100] m");
   const fs::path dir = dir_arg.getValue();
   if (!fs::exists(dir)) throw InputError(dir.string(), "no such file or directory");
+  if (out_arg.getValue().empty()) throw InputError("-o", "empty output path");
   const fs::path map_dir = resolveMapPath(out_arg.getValue());
-  if (fs::exists(map_dir) && !fs::is_directory(map_dir))
-    throw InputError(map_dir.string(), "exists and is not a map directory");
+  checkNoOverlap(dir, map_dir);
+  checkMapOutput(map_dir, force_arg.getValue());
 
   const auto reader = openDataset(dir);
   SlamParams params;
@@ -184,84 +195,106 @@ int runMap(int argc, char** argv) {
   map.meta.source_dataset = fs::absolute(dir).lexically_normal().string();
   if (base) map.meta.source_dataset = base->meta.source_dataset + ";" + map.meta.source_dataset;
   map.meta.software_version = radarslam::versionText();
-  const auto ts = Clock::now();
-  saveMap(map, map_dir);
-  const double save_ms = std::chrono::duration<double, std::milli>(Clock::now() - ts).count();
-
-  // Run products next to the map (each written atomically; a re-save of the map replaces them).
   const Trajectory traj = slam.trajectory();
-  writeTumTrajectory(map_dir / "trajectory.tum", traj);
-  writeTumTrajectory(map_dir / "odometry.tum", slam.odometryTrajectory());
+  const Trajectory odometry = slam.odometryTrajectory();
   const auto loops = slam.loops();
-  writeTextAtomically(map_dir / "loops.csv", loopsCsv(loops));
-  GridExportParams grid;
-  grid.resolution_m = grid_res_arg.getValue();
-  exportOccupancyGrid(map, map_dir, "grid", grid);
-
-  const SlamStats st = slam.stats();
-  std::ostringstream sum;
   char buf[512];
-  sum << "map summary\n";
-  std::snprintf(buf, sizeof buf,
-                "  scans          %zu processed (%zu lost: constant-velocity prediction), %zu skipped\n",
-                done, st.lost_scans, scans.skipped());
-  sum << buf;
-  std::snprintf(buf, sizeof buf,
-                "  map            %zu keyframes, %zu map points, %zu edges -> %s (saved in %.0f ms)\n",
-                map.keyframes.size(), map.points.size(), map.edges.size(), map_dir.string().c_str(), save_ms);
-  sum << buf;
-  std::snprintf(buf, sizeof buf,
-                "  loops          %zu candidates verified: %zu accepted, %zu rejected by verification, %zu "
-                "removed by the pose graph; %zu graph optimisations\n",
-                st.loop_candidates, st.loops_accepted, st.loops_rejected, st.loops_rejected_by_graph,
-                st.graph_optimisations);
-  sum << buf;
-  const double n = static_cast<double>(done);
-  std::snprintf(
-      buf, sizeof buf,
-      "  speed          %.1f scans/s overall (%.1f while tracking; finish %.1f s); per scan: tracking "
-      "%.1f ms; per keyframe: local mapping %.1f ms, loop closing %.1f ms; %zu local BAs, graph "
-      "%.0f ms total\n",
-      n / elapsed, n / track_s, elapsed - track_s, st.tracking_ms / n,
-      st.keyframes ? st.local_mapping_ms / st.keyframes : 0.0,
-      st.keyframes ? st.loop_closing_ms / st.keyframes : 0.0, st.bundle_adjustments, st.graph_ms);
-  sum << buf;
-  std::snprintf(buf, sizeof buf, "  memory         peak RSS %.0f MiB\n", peakRssMiB());
-  sum << buf;
-  sum << "  outputs        " << (map_dir / "trajectory.tum").string()
-      << ", odometry.tum, grid.png, loops.csv\n";
 
+  // The evaluation first: its report is one of the products saved with the map.
+  std::optional<eval::EvalReport> report;
+  std::string eval_text;
   if (reader->hasGroundTruth()) {
     const Trajectory& gt = reader->groundTruth();
-    const eval::EvalReport report = eval::evaluate(traj, gt, {}, "SLAM", dir.string());
-    const eval::EvalReport odo = eval::evaluate(slam.odometryTrajectory(), gt, {}, "odometry", dir.string());
+    const std::string gt_file = groundTruthFile(*reader).string();
+    try {
+      report = eval::evaluate(traj, gt, {}, "SLAM", dir.string());
+      const eval::EvalReport odo = eval::evaluate(odometry, gt, {}, "odometry", dir.string());
+      std::snprintf(
+          buf, sizeof buf,
+          "  accuracy       SLAM %.2f %% / %.4f deg/m, ATE %.2f m RMSE (odometry only: %.2f %% / %.4f "
+          "deg/m, ATE %.2f m)\n",
+          report->kitti.t_err_percent, report->kitti.r_err_deg_per_m, report->ate.trans_m.rmse,
+          odo.kitti.t_err_percent, odo.kitti.r_err_deg_per_m, odo.ate.trans_m.rmse);
+      eval_text += buf;
+    } catch (const InputError& e) {  // ground truth that does not cover the run: the map is still made
+      report.reset();
+      logger().logFmt(mrpt::system::LVL_WARN, "%s: cannot evaluate the run: %s", gt_file.c_str(),
+                      e.problem().c_str());
+      eval_text += "  (ground truth " + gt_file + " does not cover the run: not evaluated)\n";
+    }
+    if (report) {
+      LoopEvaluationParams lp;
+      lp.exclude_recent = params.loop_closing.detector.exclude_recent;
+      lp.exclude_recent_distance_m = params.loop_closing.detector.exclude_recent_distance_m;
+      const LoopEvaluation le = evaluateLoops(map, loops, gt, lp);
+      std::snprintf(
+          buf, sizeof buf,
+          "  loop truth     recall %.2f (%zu of %zu keyframes with a true loop), %zu false accepted "
+          "(%zu left in the graph), max error of true loops %.2f m / %.2f deg\n",
+          le.recall, le.keyframes_with_loop_found, le.keyframes_with_true_loop, le.false_accepted,
+          le.false_in_graph, le.max_error_m, le.max_error_deg);
+      eval_text += buf;
+      eval_text += "  evaluation     " + (map_dir / "eval" / "report.json").string() + " and plots in " +
+                   (map_dir / "eval").string() + "\n";
+    }
+  } else {
+    eval_text = "  (no ground truth in this dataset: not evaluated)\n";
+  }
+
+  // Every run product goes into the temporary map directory: the swap into place is the last step,
+  // so a failure anywhere (a too fine --grid-resolution, a full disk) leaves the previous map whole.
+  std::ostringstream sum;
+  MapSaveHooks hooks;
+  const auto ts = Clock::now();
+  hooks.write_products = [&](const fs::path& tmp) {
+    const double save_ms = std::chrono::duration<double, std::milli>(Clock::now() - ts).count();
+    writeTumTrajectory(tmp / "trajectory.tum", traj);
+    writeTumTrajectory(tmp / "odometry.tum", odometry);
+    writeTextAtomically(tmp / "loops.csv", loopsCsv(loops));
+    GridExportParams grid;
+    grid.resolution_m = grid_res_arg.getValue();
+    exportOccupancyGrid(map, tmp, "grid", grid);
+    if (report) {
+      fs::create_directories(tmp / "eval");
+      eval::writeJsonReport(tmp / "eval" / "report.json", *report);
+      eval::writePlots(tmp / "eval", *report);
+    }
+
+    const SlamStats st = slam.stats();
+    sum << "map summary\n";
+    std::snprintf(buf, sizeof buf,
+                  "  scans          %zu processed (%zu lost: constant-velocity prediction), %zu skipped\n",
+                  done, st.lost_scans, scans.skipped());
+    sum << buf;
+    std::snprintf(buf, sizeof buf,
+                  "  map            %zu keyframes, %zu map points, %zu edges -> %s (saved in %.0f ms)\n",
+                  map.keyframes.size(), map.points.size(), map.edges.size(), map_dir.string().c_str(),
+                  save_ms);
+    sum << buf;
+    std::snprintf(buf, sizeof buf,
+                  "  loops          %zu candidates verified: %zu accepted, %zu rejected by verification, %zu "
+                  "removed by the pose graph; %zu graph optimisations\n",
+                  st.loop_candidates, st.loops_accepted, st.loops_rejected, st.loops_rejected_by_graph,
+                  st.graph_optimisations);
+    sum << buf;
+    const double n = static_cast<double>(done);
     std::snprintf(
         buf, sizeof buf,
-        "  accuracy       SLAM %.2f %% / %.4f deg/m, ATE %.2f m RMSE (odometry only: %.2f %% / %.4f "
-        "deg/m, ATE %.2f m)\n",
-        report.kitti.t_err_percent, report.kitti.r_err_deg_per_m, report.ate.trans_m.rmse,
-        odo.kitti.t_err_percent, odo.kitti.r_err_deg_per_m, odo.ate.trans_m.rmse);
+        "  speed          %.1f scans/s overall (%.1f while tracking; finish %.1f s); per scan: tracking "
+        "%.1f ms; per keyframe: local mapping %.1f ms, loop closing %.1f ms; %zu local BAs, graph "
+        "%.0f ms total\n",
+        n / elapsed, n / track_s, elapsed - track_s, st.tracking_ms / n,
+        st.keyframes ? st.local_mapping_ms / st.keyframes : 0.0,
+        st.keyframes ? st.loop_closing_ms / st.keyframes : 0.0, st.bundle_adjustments, st.graph_ms);
     sum << buf;
-    LoopEvaluationParams lp;
-    lp.exclude_recent = params.loop_closing.detector.exclude_recent;
-    lp.exclude_recent_distance_m = params.loop_closing.detector.exclude_recent_distance_m;
-    const LoopEvaluation le = evaluateLoops(map, loops, gt, lp);
-    std::snprintf(buf, sizeof buf,
-                  "  loop truth     recall %.2f (%zu of %zu keyframes with a true loop), %zu false accepted "
-                  "(%zu left in the graph), max error of true loops %.2f m / %.2f deg\n",
-                  le.recall, le.keyframes_with_loop_found, le.keyframes_with_true_loop, le.false_accepted,
-                  le.false_in_graph, le.max_error_m, le.max_error_deg);
+    std::snprintf(buf, sizeof buf, "  memory         peak RSS %.0f MiB\n", peakRssMiB());
     sum << buf;
-    const fs::path eval_dir = map_dir / "eval";
-    fs::create_directories(eval_dir);
-    eval::writeJsonReport(eval_dir / "report.json", report);
-    eval::writePlots(eval_dir, report);
-    sum << "  evaluation     " << (eval_dir / "report.json").string() << " and plots in " << eval_dir.string()
-        << "\n";
-  } else {
-    sum << "  (no ground truth in this dataset: not evaluated)\n";
-  }
-  writeTextAtomically(map_dir / "summary.txt", sum.str());
+    sum << "  outputs        " << (map_dir / "trajectory.tum").string()
+        << ", odometry.tum, grid.png, loops.csv\n";
+    sum << eval_text;
+    writeTextAtomically(tmp / "summary.txt", sum.str());
+  };
+  saveMap(map, map_dir, hooks);
   std::cout << sum.str();
   return 0;
 }

@@ -8,6 +8,7 @@
 
 #include <radarslam/core/errors.h>
 #include <radarslam/core/log.h>
+#include <radarslam/core/output_path.h>
 #include <radarslam/core/version.h>
 #include <radarslam/io/dataset.h>
 #include <radarslam/map/map_from_trajectory.h>
@@ -28,14 +29,23 @@ int runMapSynth(int argc, char** argv) {
       "demos of the map format and exports; not SLAM.");
   TCLAP::UnlabeledValueArg<std::string> data_arg("dataset", "Dataset directory with ground truth", true, "",
                                                  "DATASET", cmd.tclap());
-  TCLAP::ValueArg<std::string> out_arg("o", "output", "Map name (maps/NAME) or directory", true, "", "MAP",
-                                       cmd.tclap());
+  TCLAP::ValueArg<std::string> out_arg("o", "output",
+                                       "Map name (maps/NAME) or directory; an existing map there is replaced",
+                                       true, "", "MAP", cmd.tclap());
   TCLAP::ValueArg<double> every_arg("", "every", "Keyframe distance [m] (default 2)", false, 2.0, "M",
                                     cmd.tclap());
   TCLAP::ValueArg<unsigned> max_arg("", "max-keyframes", "Stop after this many keyframes (0 = all)", false, 0,
                                     "N", cmd.tclap());
+  TCLAP::SwitchArg force_arg("", "force",
+                             "Let -o replace an empty directory or a regular file (a map is always "
+                             "replaced; a non-empty directory that is not a map never is)",
+                             cmd.tclap());
   cmd.parse(argc, argv);
   if (!(every_arg.getValue() > 0.0)) throw InputError("radarslam map-synth", "--every must be > 0");
+  if (out_arg.getValue().empty()) throw InputError("-o", "empty output path");
+  const auto dir = resolveMapPath(out_arg.getValue());
+  checkNoOverlap(data_arg.getValue(), dir);
+  checkMapOutput(dir, force_arg.getValue());
 
   const auto reader = openDataset(data_arg.getValue());
   if (!reader->hasGroundTruth())
@@ -86,7 +96,6 @@ int runMapSynth(int argc, char** argv) {
   }
   if (map.keyframes.empty())
     throw InputError(data_arg.getValue(), "no keyframe: no scan has a ground-truth pose");
-  const auto dir = resolveMapPath(out_arg.getValue());
   saveMap(map, dir);
   std::size_t points = 0;
   for (const auto& kf : map.keyframes) points += kf.points.size();

@@ -7,11 +7,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include <radarslam/core/errors.h>
 #include <radarslam/core/input_file.h>
 #include <radarslam/core/log.h>
+#include <radarslam/core/output_path.h>
 #include <radarslam/core/yaml_params.h>
 #include <radarslam/eval/evaluate.h>
 #include <radarslam/eval/plots.h>
@@ -40,8 +42,9 @@ int runOdometry(int argc, char** argv) {
       "With ground truth in the dataset it also prints the KITTI/ATE/RPE metrics. See docs/odometry.md.");
   TCLAP::UnlabeledValueArg<std::string> dir_arg(
       "dataset", "Dataset directory (any supported layout) or .rawlog", true, "", "DIR", cmd.tclap());
-  TCLAP::ValueArg<std::string> out_arg("o", "output", "Output trajectory (TUM)", true, "", "FILE",
-                                       cmd.tclap());
+  TCLAP::ValueArg<std::string> out_arg(
+      "o", "output", "Output trajectory (TUM); a regular file there is replaced, a device or FIFO written to",
+      true, "", "FILE", cmd.tclap());
   TCLAP::ValueArg<std::string> config_arg("", "config",
                                           "Parameters (YAML; default: config/<sensor>.yaml for the detected "
                                           "dataset kind, or built-in defaults)",
@@ -62,7 +65,12 @@ int runOdometry(int argc, char** argv) {
   if (count_arg.isSet() && count_arg.getValue() < 1) throw InputError(where, "--count must be >= 1");
   const fs::path dir = dir_arg.getValue(), out = out_arg.getValue();
   if (!fs::exists(dir)) throw InputError(dir.string(), "no such file or directory");
-  if (fs::is_directory(out)) throw InputError(out.string(), "output is a directory, expected a file name");
+  checkNoOverlap(dir, out);
+  checkFileOutput(out);
+  if (eval_arg.isSet()) {
+    checkNoOverlap(dir, eval_arg.getValue());
+    checkDirectoryOutput(eval_arg.getValue(), "--eval-dir");
+  }
 
   const auto reader = openDataset(dir);
   OdometryParams params;
@@ -146,8 +154,20 @@ int runOdometry(int argc, char** argv) {
   std::printf("  trajectory     %s\n", out.string().c_str());
 
   if (reader->hasGroundTruth()) {
-    const eval::EvalReport report =
-        eval::evaluate(traj, reader->groundTruth(), {}, out.string(), dir.string());
+    std::optional<eval::EvalReport> evaluated;
+    try {
+      evaluated = eval::evaluate(traj, reader->groundTruth(), {}, out.string(), dir.string());
+    } catch (const InputError& e) {
+      // The trajectory is written; ground truth that does not cover it is the ground truth's problem.
+      const std::string gt_file = groundTruthFile(*reader).string();
+      if (eval_arg.isSet())  // the requested report cannot be made
+        throw InputError(gt_file, "cannot evaluate " + out.string() + ": " + e.problem());
+      logger().logFmt(mrpt::system::LVL_WARN, "%s: cannot evaluate %s: %s", gt_file.c_str(),
+                      out.string().c_str(), e.problem().c_str());
+      std::printf("  (not evaluated against %s: see the warning)\n", gt_file.c_str());
+      return 0;
+    }
+    const eval::EvalReport& report = *evaluated;
     std::cout << eval::formatSummary(report);
     if (eval_arg.isSet()) {
       const fs::path eval_dir = eval_arg.getValue();

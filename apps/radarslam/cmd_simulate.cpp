@@ -5,7 +5,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include <radarslam/core/atomic_file.h>
+#include <radarslam/core/cleanup_on_signal.h>
 #include <radarslam/core/errors.h>
+#include <radarslam/core/output_path.h>
 #include <radarslam/io/dataset.h>
 #include <radarslam/radar/cartesian.h>
 #include <radarslam/sim/scan_statistics.h>
@@ -96,7 +98,56 @@ int compareReal(const fs::path& real_dir, const fs::path& out_png, sim::Simulati
   return 0;
 }
 
-bool nonEmptyDir(const fs::path& p) { return fs::exists(p) && (!fs::is_directory(p) || !fs::is_empty(p)); }
+/// True if `dir` holds nothing but what a simulation writes (radar/*.png, radar.timestamps,
+/// gt/radar_odometry.csv, gt/poses.tum, hidden temporaries): only such a directory is replaced.
+bool onlySimulationOutput(const fs::path& dir) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name == "radar.timestamps" && e.is_regular_file(ec)) continue;
+    if ((name == "radar" || name == "gt") && e.is_directory(ec) && !e.is_symlink(ec)) {
+      for (const auto& f : fs::directory_iterator(e.path(), ec)) {
+        const std::string n = f.path().filename().string();
+        const bool ours = name == "radar" ? f.path().extension() == ".png" || n.front() == '.'
+                                          : n == "radar_odometry.csv" || n == "poses.tum" || n.front() == '.';
+        if (!ours || !f.is_regular_file(ec)) return false;
+      }
+      continue;
+    }
+    return false;
+  }
+  return !ec;
+}
+
+/// Checks OUT_DIR before any work: missing, empty, or (with --force) a previous simulation.
+void checkSimulationOutput(const std::string& out, bool force) {
+  checkDirectoryOutput(out, "OUT_DIR");
+  const fs::path dir = followSymlinks(out);
+  std::error_code ec;
+  if (!fs::exists(dir, ec) || fs::is_empty(dir, ec)) return;
+  if (!onlySimulationOutput(dir))
+    throw InputError(out, "is not empty and holds more than a previous simulation: refusing to replace it");
+  if (!force)
+    throw InputError(out, "output directory is not empty (use --force to replace a previous simulation)");
+}
+
+/// Moves the finished simulation in `staging` to `dir`, replacing a previous one there.
+void publishSimulation(const fs::path& staging, const fs::path& dir) {
+  std::error_code ec;
+  const fs::path old = stagingSibling(dir, "sim-old");
+  const bool had_old = fs::exists(dir, ec) && !fs::is_empty(dir, ec);
+  if (had_old) {
+    fs::rename(dir, old, ec);
+    if (ec) throw InputError(dir.string(), "cannot move the previous simulation aside: " + ec.message());
+  }
+  fs::rename(staging, dir, ec);  // also over an empty directory
+  if (ec) {
+    const std::string msg = ec.message();
+    if (had_old) fs::rename(old, dir, ec);
+    throw InputError(dir.string(), "cannot move the simulation into place: " + msg);
+  }
+  if (had_old) fs::remove_all(old, ec);
+}
 
 int runSimulate(int argc, char** argv) {
   cli::CommandLine cmd(
@@ -112,7 +163,9 @@ int runSimulate(int argc, char** argv) {
       "Compare simulated scans with the real Oxford scans in DIR: print intensity "
       "statistics and write a side-by-side Cartesian PNG to OUT_DIR",
       false, "", "DIR", c);
-  TCLAP::SwitchArg force("", "force", "Write into a non-empty OUT_DIR (replacing a previous simulation)", c);
+  TCLAP::SwitchArg force(
+      "", "force",
+      "Replace a previous simulation in OUT_DIR (a directory holding anything else is never replaced)", c);
   TCLAP::ValueArg<double> rpm("", "rpm", "Rotation rate, revolutions per minute (default 240 = 4 Hz)", false,
                               0, "RPM", c);
   TCLAP::ValueArg<double> resolution("", "resolution", "Range resolution, m/bin (default 0.0432)", false, 0,
@@ -158,28 +211,36 @@ int runSimulate(int argc, char** argv) {
   if (!(g.range_resolution_m > 0)) throw InputError("--resolution", "must be > 0");
   if (!(g.rotation_hz > 0.1 && g.rotation_hz <= 40)) throw InputError("--rpm", "must be in 6..2400");
 
-  if (!compare.getValue().empty()) return compareReal(compare.getValue(), out.getValue(), config);
-
-  const fs::path dir = out.getValue();
-  if (nonEmptyDir(dir)) {
-    if (!force.getValue())
-      throw InputError(dir.string(),
-                       "output directory is not empty (use --force to replace a previous simulation)");
-    std::error_code ec;  // remove only what a simulation writes
-    fs::remove_all(dir / "radar", ec);
-    fs::remove(dir / "radar.timestamps", ec);
-    fs::remove(dir / "gt" / "radar_odometry.csv", ec);
-    fs::remove(dir / "gt" / "poses.tum", ec);
+  if (!compare.getValue().empty()) {
+    checkNoOverlap(compare.getValue(), out.getValue());
+    checkFileOutput(out.getValue(), "OUT_DIR");
+    return compareReal(compare.getValue(), out.getValue(), config);
   }
+
+  // The sequence is written into a hidden sibling and renamed into place when complete: a failed
+  // or interrupted run leaves nothing behind (and the previous simulation, if any, untouched).
+  checkSimulationOutput(out.getValue(), force.getValue());
+  const fs::path dir = followSymlinks(out.getValue());
+  const fs::path staging = stagingSibling(dir, "sim-tmp");
+  const TemporaryPath removed_on_signal(staging);
+  std::error_code ec;
+  fs::remove_all(staging, ec);
   ProgressBar bar;
-  const auto s = sim::simulateToDirectory(config, dir, [&](std::size_t d, std::size_t t) { bar(d, t); });
+  sim::SimulationSummary s;
+  try {
+    s = sim::simulateToDirectory(config, staging, [&](std::size_t d, std::size_t t) { bar(d, t); });
+    publishSimulation(staging, dir);
+  } catch (...) {
+    fs::remove_all(staging, ec);
+    throw;
+  }
   std::printf(
       "simulated %zu scans, %.2f km (%s weather, traversal %d, seed %llu); route has %zu loop closures (%zu "
       "in the "
       "opposite direction); %.1f s (%.1f scans/s) -> %s\n",
       s.scans, s.length_m / 1000, config.weather.c_str(), config.traversal,
       static_cast<unsigned long long>(config.seed), s.loops, s.opposite_loops, s.wall_seconds,
-      s.wall_seconds > 0 ? static_cast<double>(s.scans) / s.wall_seconds : 0.0, dir.string().c_str());
+      s.wall_seconds > 0 ? static_cast<double>(s.scans) / s.wall_seconds : 0.0, out.getValue().c_str());
   return 0;
 }
 

@@ -24,6 +24,22 @@ std::string defaultConfigName(DatasetKind kind) {
   return "";
 }
 
+fs::path groundTruthFile(const DatasetReader& reader) {
+  switch (reader.kind()) {
+    case DatasetKind::Oxford:
+      return reader.root() / "gt" / "radar_odometry.csv";
+    case DatasetKind::MulRanOxfordForm:
+    case DatasetKind::MulRanPolar:
+      return reader.root() / "global_pose.csv";
+    case DatasetKind::Boreas:
+      return reader.root() / "applanix" / "radar_poses.csv";
+    case DatasetKind::Radiate:
+    case DatasetKind::Rawlog:
+      break;
+  }
+  return reader.root();
+}
+
 std::optional<fs::path> findConfig(const std::string& explicit_path, DatasetKind kind) {
   if (!explicit_path.empty()) return fs::path(explicit_path);
   return findConfigFile(defaultConfigName(kind));

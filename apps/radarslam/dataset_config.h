@@ -1,6 +1,6 @@
 #pragma once
 // Shared by the commands that run the pipeline: the default parameter file for a dataset kind
-// (config/<sensor>.yaml), and the progress clock format.
+// (config/<sensor>.yaml), where its ground truth comes from, and the progress clock format.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -19,6 +19,10 @@ std::optional<std::filesystem::path> findConfig(const std::string& explicit_path
 
 /// config/<name> found as findConfig finds a default (none for an empty name or no such file).
 std::optional<std::filesystem::path> findConfigFile(const std::string& name);
+
+/// The file a dataset's ground truth is read from, for messages (gt/radar_odometry.csv,
+/// global_pose.csv, applanix/radar_poses.csv; the .rawlog itself).
+std::filesystem::path groundTruthFile(const DatasetReader& reader);
 
 /// "m:ss"
 std::string clockText(double seconds);

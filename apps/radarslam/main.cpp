@@ -3,6 +3,7 @@
 #include <iostream>
 #include <string>
 
+#include <radarslam/core/cleanup_on_signal.h>
 #include <radarslam/core/errors.h>
 #include <radarslam/core/version.h>
 #include <radarslam/obs/registration.h>
@@ -26,6 +27,7 @@ void printUsage(std::ostream& os) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  radarslam::installCleanupOnSignal();  // Ctrl-C removes temporary outputs
   radarslam::registerRadarslamClasses();
   if (argc < 2) {
     printUsage(std::cerr);

@@ -9,7 +9,9 @@
 #include <fstream>
 #include <string>
 
+#include "radarslam/core/cleanup_on_signal.h"
 #include "radarslam/core/errors.h"
+#include "radarslam/core/output_path.h"
 
 namespace radarslam {
 namespace fs = std::filesystem;
@@ -40,19 +42,27 @@ void fsyncFile(const fs::path& path) {
   if (rc != 0) throw InputError(path.string(), std::string("fsync failed: ") + std::strerror(errno));
 }
 
-void writeFileAtomically(const fs::path& path, const std::function<void(const fs::path& tmp)>& write) {
+void writeFileAtomically(const fs::path& path_in, const std::function<void(const fs::path& tmp)>& write) {
+  if (path_in.empty()) throw InputError("output", "empty output path");
+  // Through a symbolic link: the file it points to is replaced, the link stays.
+  const fs::path path = followSymlinks(path_in);
+  if (isSpecialFile(path)) {  // a device, FIFO or socket is written in place, never renamed over
+    write(path);
+    return;
+  }
   std::error_code ec;
   if (path.has_parent_path()) {
     fs::create_directories(path.parent_path(), ec);
     if (ec) throw InputError(path.parent_path().string(), "cannot create directory: " + ec.message());
   }
   const fs::path tmp = temporarySibling(path);
+  const TemporaryPath removed_on_signal(tmp);
   try {
     write(tmp);
-    if (!fs::exists(tmp)) throw InputError(path.string(), "writer produced no output");
+    if (!fs::exists(tmp)) throw InputError(path_in.string(), "writer produced no output");
     fsyncFile(tmp);
     fs::rename(tmp, path, ec);
-    if (ec) throw InputError(path.string(), "cannot rename temporary file into place: " + ec.message());
+    if (ec) throw InputError(path_in.string(), "cannot rename temporary file into place: " + ec.message());
   } catch (...) {
     fs::remove(tmp, ec);
     throw;

@@ -14,9 +14,11 @@
 #include "manifest_strings.h"
 #include "map_validation.h"
 #include "radarslam/core/atomic_file.h"
+#include "radarslam/core/cleanup_on_signal.h"
 #include "radarslam/core/errors.h"
 #include "radarslam/core/input_file.h"
 #include "radarslam/core/log.h"
+#include "radarslam/core/output_path.h"
 #include "radarslam/core/yaml_params.h"
 #include "radarslam/map/sha256.h"
 
@@ -315,14 +317,23 @@ fs::path resolveMapPath(const std::string& name_or_path) {
 }
 
 void saveMap(const KeyframeMap& map, const fs::path& dir_in, const MapSaveHooks& hooks) {
-  const fs::path dir = withoutTrailingSlash(dir_in);
+  if (dir_in.empty()) throw InputError("map", "empty map directory path");
+  // Through a symbolic link the map it points to is replaced, never the link.
+  const fs::path dir = followSymlinks(dir_in);
   const fs::path parent = parentOf(dir);
   const fs::path tmp = mapTempDir(dir);
   const fs::path backup = mapBackupDir(dir);
   std::error_code ec;
+  // Only a map is ever replaced: the contents of any other directory are never deleted.
+  if (fs::is_directory(dir, ec) && !hasManifest(dir) && !fs::is_empty(dir, ec))
+    throw InputError(dir_in.string(),
+                     "is a directory but not a radarslam map (no manifest.yaml): refusing to replace it");
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec) && !fs::is_regular_file(dir, ec))
+    throw InputError(dir_in.string(), "is a special file, not a map directory");
   fs::create_directories(parent, ec);
   if (ec) throw InputError(parent.string(), "cannot create directory: " + ec.message());
   fs::remove_all(tmp, ec);  // a stale temporary from an interrupted save
+  const TemporaryPath removed_on_signal(tmp);
   if (!fs::create_directory(tmp, ec) || ec)
     throw InputError(tmp.string(), "cannot create temporary map directory: " + ec.message());
 
@@ -345,6 +356,7 @@ void saveMap(const KeyframeMap& map, const fs::path& dir_in, const MapSaveHooks&
     }
     writeFileSynced(tmp / "manifest.yaml", manifestText(map, created, files));
     if (hooks.after_file) hooks.after_file("manifest.yaml");
+    if (hooks.write_products) hooks.write_products(tmp);
     fsyncDirectory(tmp);
   } catch (...) {
     fs::remove_all(tmp, ec);

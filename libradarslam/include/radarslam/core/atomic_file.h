@@ -10,7 +10,10 @@ namespace radarslam {
 
 /// Calls `write(tmp)` to produce the content in a temporary file next to `path`, then fsyncs and
 /// renames it to `path`. If `write` throws, the temporary is removed and `path` is untouched.
-/// Parent directories are created. Throws InputError naming `path` on I/O failure.
+/// Parent directories are created. Throws InputError naming `path` on I/O failure. A symbolic link
+/// is written through (its target is replaced); a special file (device, FIFO, socket) is passed to
+/// `write` itself and written in place. The temporary is removed if the process is interrupted
+/// (cleanup_on_signal.h).
 void writeFileAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path& tmp)>& write);
 

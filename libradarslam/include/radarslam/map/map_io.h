@@ -24,12 +24,18 @@ struct MapSaveHooks {
   /// Called after each file of the temporary directory is written (file name); tests throw from it
   /// to simulate a crash in the middle of a save.
   std::function<void(const std::string& file)> after_file;
+  /// Called with the temporary directory once the map files are in it, before the swap: products
+  /// written there (trajectories, previews, reports) replace the old ones in the same swap, and if
+  /// it throws the previous map (with its products) stays as it was.
+  std::function<void(const std::filesystem::path& tmp_dir)> write_products;
 };
 
 /// Writes `map` to directory `dir` atomically: everything goes into the sibling `.NAME.map-tmp`
 /// (fsynced), then the old map (if any) is renamed to `.NAME.map-backup`, the new one renamed into
 /// place and the backup deleted. Anything else inside an old `dir` (e.g. exports/) goes with it.
-/// Throws InputError naming the file on I/O failure (the previous map stays loadable).
+/// Throws InputError naming the file on I/O failure (the previous map stays loadable). Only a map
+/// (manifest.yaml), an empty directory or a regular file is replaced: any other non-empty
+/// directory is refused. A symbolic link `dir` is written through: the map it points to is replaced.
 void saveMap(const KeyframeMap& map, const std::filesystem::path& dir, const MapSaveHooks& hooks = {});
 
 /// Reads and verifies a map directory. If `dir` is missing but its `.NAME.map-backup` is complete
