@@ -378,8 +378,9 @@ void saveMap(const KeyframeMap& map, const fs::path& dir_in, const MapSaveHooks&
   if (had_old) {
     fs::rename(dir, backup, ec);
     if (ec) {
+      const std::string msg = ec.message();  // before remove_all() resets ec ("...: Success")
       fs::remove_all(tmp, ec);
-      throw InputError(dir.string(), "cannot move the previous map aside: " + ec.message());
+      throw InputError(dir.string(), "cannot move the previous map aside: " + msg);
     }
   }
   fs::rename(tmp, dir, ec);
