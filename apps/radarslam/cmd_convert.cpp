@@ -14,34 +14,12 @@
 
 #include "cli_common.h"
 #include "command.h"
+#include "progress_line.h"
 
 namespace radarslam::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// One-line progress on stderr, refreshed at most twice a second: count, rate and ETA.
-class Progress {
- public:
-  explicit Progress(std::size_t total) : total_(total), start_(Clock::now()), last_(start_) {}
-  void update(std::size_t done, bool final = false) {
-    const auto now = Clock::now();
-    if (!final && now - last_ < std::chrono::milliseconds(500)) return;
-    last_ = now;
-    const double secs = std::chrono::duration<double>(now - start_).count();
-    const double rate = secs > 0 ? static_cast<double>(done) / secs : 0.0;
-    const double eta = rate > 0 ? static_cast<double>(total_ - done) / rate : 0.0;
-    std::fprintf(stderr, "\rconvert: %zu/%zu scans (%.0f%%), %.1f scans/s, ETA %.0f s   ", done, total_,
-                 total_ ? 100.0 * static_cast<double>(done) / static_cast<double>(total_) : 100.0, rate, eta);
-    if (final) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
-  }
-  double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
-
- private:
-  std::size_t total_;
-  Clock::time_point start_, last_;
-};
 
 int runConvert(int argc, char** argv) {
   CommandLine cmd(
@@ -84,7 +62,7 @@ int runConvert(int argc, char** argv) {
   ScanIterator it(*reader, skip_arg.getValue(), first, end);
 
   std::size_t written = 0;
-  Progress progress(it.total());
+  ProgressLine progress("convert", it.total());
   writeFileAtomically(out, [&](const std::filesystem::path& tmp) {
     RawlogWriter writer(tmp, 1);
     std::size_t visited = 0;
@@ -99,9 +77,9 @@ int runConvert(int argc, char** argv) {
       throw InputError(path.string(),
                        "no scan could be converted (" + std::to_string(it.skipped()) + " skipped)");
   });
-  progress.update(it.total(), true);
+  progress.finish(it.total());
   std::cout << "converted " << written << " scans of " << toString(reader->kind()) << " " << path.string()
-            << " to " << out.string() << " in " << progress.elapsed() << " s; skipped " << it.skipped()
+            << " to " << out.string() << " in " << progress.elapsedSeconds() << " s; skipped " << it.skipped()
             << " bad scan(s)\n";
   return 0;
 }

@@ -33,6 +33,7 @@
 #include "cli_common.h"
 #include "command.h"
 #include "dataset_config.h"
+#include "progress_line.h"
 
 namespace radarslam::cli {
 namespace {
@@ -158,29 +159,21 @@ int runMap(int argc, char** argv) {
   }
   ScanIterator scans(*reader, skip_arg.getValue(), first, end);
   const auto t0 = Clock::now();
-  auto last_print = t0;
   std::size_t done = 0;
-  const bool tty = isatty(STDERR_FILENO);
+  ProgressLine progress("map", scans.total(), !quiet_arg.getValue());
+  const auto tail = [&] {
+    const SlamStats st = slam.stats();
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "%zu keyframes, %zu loops, lost %zu", st.keyframes, st.loops_accepted,
+                  st.lost_scans);
+    return std::string(buf);
+  };
   while (const auto scan = scans.next()) {
     slam.process(*scan);
     ++done;
-    const auto now = Clock::now();
-    if (!quiet_arg.getValue() &&
-        (std::chrono::duration<double>(now - last_print).count() > (tty ? 1.0 : 10.0) ||
-         done + scans.skipped() == scans.total())) {
-      last_print = now;
-      const double el = std::chrono::duration<double>(now - t0).count();
-      const double rate = el > 0 ? done / el : 0;
-      const double eta = rate > 0 ? (scans.total() - done - scans.skipped()) / rate : 0;
-      const SlamStats st = slam.stats();
-      std::fprintf(
-          stderr, "%smap: %zu/%zu scans (%.0f%%), %.1f scans/s, ETA %s, %zu keyframes, %zu loops, lost %zu%s",
-          tty ? "\r" : "", done + scans.skipped(), scans.total(),
-          100.0 * (done + scans.skipped()) / scans.total(), rate, clockText(eta).c_str(), st.keyframes,
-          st.loops_accepted, st.lost_scans, tty ? "   " : "\n");
-    }
+    progress.update(done + scans.skipped(), tail);
   }
-  if (!quiet_arg.getValue() && tty) std::fprintf(stderr, "\n");
+  progress.finish(done + scans.skipped(), tail);
   if (done == 0) throw InputError(dir.string(), "no scan could be read");
   const double track_s = std::chrono::duration<double>(Clock::now() - t0).count();
   try {

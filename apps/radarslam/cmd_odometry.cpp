@@ -26,6 +26,7 @@
 #include "cli_common.h"
 #include "command.h"
 #include "dataset_config.h"
+#include "progress_line.h"
 
 namespace radarslam::cli {
 namespace {
@@ -100,10 +101,10 @@ int runOdometry(int argc, char** argv) {
   RadarOdometry odometry(params);
   ScanIterator scans(*reader, skip_arg.getValue(), first, end);
   const auto t0 = Clock::now();
-  auto last_print = t0;
   std::size_t done = 0, lost = 0, keyframes = 0;
   StageTimes total;
-  const bool progress = !quiet_arg.getValue() && isatty(STDERR_FILENO);
+  ProgressLine progress("odometry", scans.total(), !quiet_arg.getValue());
+  const auto tail = [&] { return "lost " + std::to_string(lost); };
   while (const auto scan = scans.next()) {
     const OdometryStep step = odometry.process(*scan);
     ++done;
@@ -113,20 +114,9 @@ int runOdometry(int argc, char** argv) {
     total.cartesian += t.cartesian, total.detect += t.detect, total.describe += t.describe;
     total.align_prep += t.align_prep, total.match += t.match, total.clique += t.clique, total.svd += t.svd;
     total.refine += t.refine;
-    const auto now = Clock::now();
-    if (!quiet_arg.getValue() &&
-        (std::chrono::duration<double>(now - last_print).count() > 1.0 || done == scans.total())) {
-      last_print = now;
-      const double el = std::chrono::duration<double>(now - t0).count();
-      const double rate = el > 0 ? done / el : 0;
-      const double eta = rate > 0 ? (scans.total() - done - scans.skipped()) / rate : 0;
-      std::fprintf(stderr, "%sodometry: %zu/%zu scans (%.0f%%), %.1f scans/s, ETA %s, lost %zu%s",
-                   progress ? "\r" : "", done + scans.skipped(), scans.total(),
-                   100.0 * (done + scans.skipped()) / scans.total(), rate, clockText(eta).c_str(), lost,
-                   progress ? "   " : "\n");
-    }
+    progress.update(done + scans.skipped(), tail);
   }
-  if (progress) std::fprintf(stderr, "\n");
+  progress.finish(done + scans.skipped(), tail);
   const double elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
   const Trajectory& traj = odometry.trajectory();
   if (traj.empty()) throw InputError(dir.string(), "no scan could be read");

@@ -20,37 +20,12 @@
 
 #include "cli_common.h"
 #include "command.h"
+#include "progress_line.h"
 
 namespace fs = std::filesystem;
 using namespace radarslam;
 
 namespace {
-
-std::string duration(double s) {
-  char buf[32];
-  const int t = static_cast<int>(s + 0.5);
-  std::snprintf(buf, sizeof buf, "%d:%02d", t / 60, t % 60);
-  return buf;
-}
-
-class ProgressBar {
- public:
-  void operator()(std::size_t done, std::size_t total) {
-    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
-    if (done != total && el - last_ < 0.2) return;
-    last_ = el;
-    const double rate = el > 0 ? static_cast<double>(done) / el : 0;
-    const int width = 30, fill = total ? static_cast<int>(width * done / total) : width;
-    std::fprintf(stderr, "\rsimulate [%s%s] %zu/%zu scans  %.1f scans/s  ETA %s ",
-                 std::string(fill, '#').c_str(), std::string(width - fill, '.').c_str(), done, total, rate,
-                 duration(rate > 0 ? static_cast<double>(total - done) / rate : 0).c_str());
-    if (done == total) std::fprintf(stderr, "\n");
-  }
-
- private:
-  std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
-  double last_ = -1;
-};
 
 cv::Mat labelled(const cv::Mat& img, const std::string& text) {
   cv::Mat out;
@@ -225,10 +200,13 @@ int runSimulate(int argc, char** argv) {
   const TemporaryPath removed_on_signal(staging);
   std::error_code ec;
   fs::remove_all(staging, ec);
-  ProgressBar bar;
+  std::optional<cli::ProgressLine> bar;
   sim::SimulationSummary s;
   try {
-    s = sim::simulateToDirectory(config, staging, [&](std::size_t d, std::size_t t) { bar(d, t); });
+    s = sim::simulateToDirectory(config, staging, [&](std::size_t d, std::size_t t) {
+      if (!bar) bar.emplace("simulate", t);
+      d == t ? bar->finish(d) : bar->update(d);
+    });
     publishSimulation(staging, dir);
   } catch (...) {
     fs::remove_all(staging, ec);
