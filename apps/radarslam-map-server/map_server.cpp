@@ -92,29 +92,33 @@ void MapServer::load() {
   info.manifest_sha256 = *after;
   info.created = dds::toTimeMsg(map.meta.created_ns);
 
-  // Build every message first, then publish them back to back (subscribers see a consistent set
-  // as soon as possible; MapInfo goes last and names the grid's checksum).
+  // The grid first (what a late joiner needs soonest) with MapInfo, which names its checksum; then
+  // the other layers, each published as soon as it is built. All carry the same header stamp, so
+  // a client knows which publication each belongs to. The OctoMap (grid_columns fill) reuses the
+  // grid's occupancy raster when the resolutions agree.
   std::string summary;
-  std::optional<dds::OccupancyGridMsg> grid;
-  std::optional<dds::PointCloud2Msg> cloud;
-  std::optional<dds::OctomapMsg> octo;
+  std::optional<OccupancyRaster> raster;
+  const bool share_raster = params_.octomap.fill == OctomapExportParams::Fill::grid_columns &&
+                            params_.octomap.resolution_m == params_.grid.resolution_m;
+  if (grid_pub_ || (octomap_pub_ && share_raster)) raster = buildOccupancy(map, params_.grid);
   if (grid_pub_) {
-    grid = dds::gridMessage(map, params_.grid, now);
-    info.grid_sha256 = dds::gridSha256(*grid);
-    summary += "grid " + std::to_string(grid->width) + "x" + std::to_string(grid->height) + ", ";
+    const dds::OccupancyGridMsg grid = dds::gridMessage(*raster, now);
+    info.grid_sha256 = dds::gridSha256(grid);
+    summary += "grid " + std::to_string(grid.width) + "x" + std::to_string(grid.height) + ", ";
+    grid_pub_->publish(grid);
   }
+  info_pub_->publish(info);
   if (cloud_pub_) {
-    cloud = dds::cloudMessage(map, now);
-    summary += "cloud " + std::to_string(cloud->width) + " points, ";
+    const dds::PointCloud2Msg cloud = dds::cloudMessage(map, now);
+    summary += "cloud " + std::to_string(cloud.width) + " points, ";
+    cloud_pub_->publish(cloud);
   }
   if (octomap_pub_) {
-    octo = dds::octomapMessage(map, params_.octomap, now);
-    summary += "octomap " + std::to_string(octo->data.size()) + " bytes, ";
+    const dds::OctomapMsg octo =
+        share_raster ? dds::octomapMessage(*raster, now) : dds::octomapMessage(map, params_.octomap, now);
+    summary += "octomap " + std::to_string(octo.data.size()) + " bytes, ";
+    octomap_pub_->publish(octo);
   }
-  if (grid) grid_pub_->publish(*grid);
-  if (cloud) cloud_pub_->publish(*cloud);
-  if (octo) octomap_pub_->publish(*octo);
-  info_pub_->publish(info);
   revision_ = info.revision;
   loaded_manifest_sha_ = *after;
   failed_fingerprint_.clear();

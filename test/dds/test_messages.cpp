@@ -111,7 +111,7 @@ TEST(DdsMessages, GridMessageMatchesTheOccupancyRaster) {
   ASSERT_EQ(g.data.size(), r.p_occupied.size());
   int unknown = 0;
   for (std::size_t i = 0; i < g.data.size(); ++i) {
-    if (r.p_occupied[i] == 0.5f) {
+    if (!r.observed[i]) {
       EXPECT_EQ(g.data[i], -1);
       ++unknown;
     } else {

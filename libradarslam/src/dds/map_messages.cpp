@@ -47,7 +47,10 @@ struct ScratchDir {
 }  // namespace
 
 OccupancyGridMsg gridMessage(const KeyframeMap& map, const GridExportParams& params, StampNs stamp) {
-  const OccupancyRaster r = buildOccupancy(map, params);
+  return gridMessage(buildOccupancy(map, params), stamp);
+}
+
+OccupancyGridMsg gridMessage(const OccupancyRaster& r, StampNs stamp) {
   OccupancyGridMsg g;
   g.header = mapHeader(stamp);
   g.map_load_time = toTimeMsg(stamp);
@@ -58,8 +61,8 @@ OccupancyGridMsg gridMessage(const KeyframeMap& map, const GridExportParams& par
   g.origin.y = r.y_min;
   g.data.resize(r.p_occupied.size());
   for (std::size_t i = 0; i < r.p_occupied.size(); ++i) {
-    const float p = r.p_occupied[i];
-    g.data[i] = p == 0.5f ? std::int8_t{-1} : static_cast<std::int8_t>(std::lround(100.0 * p));
+    const bool seen = r.observed.empty() ? r.p_occupied[i] != 0.5f : r.observed[i] != 0;
+    g.data[i] = seen ? static_cast<std::int8_t>(std::lround(100.0 * r.p_occupied[i])) : std::int8_t{-1};
   }
   return g;
 }
@@ -98,9 +101,7 @@ OctomapMsg octomapMessage(const KeyframeMap& map, const OctomapExportParams& par
   if (params.fill == OctomapExportParams::Fill::grid_columns) {
     GridExportParams grid;
     grid.resolution_m = params.resolution_m;
-    OctomapSlabParams slab_params;
-    slab_params.full_data = false;
-    bytes = encodeOctomapSlab(buildOccupancy(map, grid), slab_params).binary_data;
+    return octomapMessage(buildOccupancy(map, grid), stamp);
   } else {
     ScratchDir scratch;
     exportOctomap(map, scratch.path, "map", params);
@@ -111,6 +112,20 @@ OctomapMsg octomapMessage(const KeyframeMap& map, const OctomapExportParams& par
     tree.writeBinaryData(os);
     bytes = os.str();
   }
+  m.data.assign(reinterpret_cast<const std::int8_t*>(bytes.data()),
+                reinterpret_cast<const std::int8_t*>(bytes.data()) + bytes.size());
+  return m;
+}
+
+OctomapMsg octomapMessage(const OccupancyRaster& raster, StampNs stamp) {
+  OctomapSlabParams slab_params;
+  slab_params.full_data = false;
+  const std::string bytes = encodeOctomapSlab(raster, slab_params).binary_data;
+  OctomapMsg m;
+  m.header = mapHeader(stamp);
+  m.binary = true;
+  m.id = "OcTree";
+  m.resolution = raster.resolution;
   m.data.assign(reinterpret_cast<const std::int8_t*>(bytes.data()),
                 reinterpret_cast<const std::int8_t*>(bytes.data()) + bytes.size());
   return m;

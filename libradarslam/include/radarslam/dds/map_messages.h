@@ -16,8 +16,9 @@ namespace radarslam::dds {
 inline constexpr const char* kMapFrame = "map";
 
 /// nav_msgs/OccupancyGrid of buildOccupancy(map): cell = round(100 * P(occupied)), -1 where the
-/// map never observed the cell (P = 0.5 exactly), row 0 = lowest y, origin = grid corner.
+/// map never observed the cell, row 0 = lowest y, origin = grid corner.
 OccupancyGridMsg gridMessage(const KeyframeMap& map, const GridExportParams& params, StampNs stamp);
+OccupancyGridMsg gridMessage(const OccupancyRaster& raster, StampNs stamp);
 
 /// sensor_msgs/PointCloud2 of every keyframe point in the map frame: fields x, y, z (= 0),
 /// intensity (= power), FLOAT32, little-endian, point_step 16, height 1.
@@ -25,6 +26,9 @@ PointCloud2Msg cloudMessage(const KeyframeMap& map, StampNs stamp);
 
 /// octomap_msgs/Octomap (binary) of exportOctomap(map): data = OcTree::writeBinaryData.
 OctomapMsg octomapMessage(const KeyframeMap& map, const OctomapExportParams& params, StampNs stamp);
+/// The same for the grid_columns fill, from an occupancy raster already built (at the OctoMap's
+/// resolution): the map server builds the raster once for the grid and the OctoMap.
+OctomapMsg octomapMessage(const OccupancyRaster& raster, StampNs stamp);
 
 /// SHA-256 (64 hex) of the grid cells (the int8 bytes of OccupancyGridMsg::data).
 std::string gridSha256(const OccupancyGridMsg& grid);
