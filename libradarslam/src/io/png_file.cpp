@@ -2,6 +2,7 @@
 
 #include "png_decode.h"
 
+#include <zlib.h>
 #include <array>
 #include <cstdint>
 #include <cstring>
@@ -22,20 +23,11 @@ std::uint32_t be32(const unsigned char* p) {
   return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
 }
 
-// CRC-32 as specified by PNG (ISO 3309 polynomial), table-driven.
+// CRC-32 as PNG specifies it (ISO 3309) is zlib's crc32 (already linked through libpng), which
+// is several times faster than a byte-wise table: it runs over every byte of every scan file.
 std::uint32_t crc32(std::span<const unsigned char> data) {
-  static const auto table = [] {
-    std::array<std::uint32_t, 256> t{};
-    for (std::uint32_t n = 0; n < 256; ++n) {
-      std::uint32_t c = n;
-      for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xedb88320u ^ (c >> 1) : c >> 1;
-      t[n] = c;
-    }
-    return t;
-  }();
-  std::uint32_t c = 0xffffffffu;
-  for (unsigned char b : data) c = table[(c ^ b) & 0xffu] ^ (c >> 8);
-  return c ^ 0xffffffffu;
+  return static_cast<std::uint32_t>(
+      ::crc32(::crc32(0L, Z_NULL, 0), data.data(), static_cast<uInt>(data.size())));
 }
 
 void checkSignature(std::span<const unsigned char> bytes, const std::filesystem::path& file) {
