@@ -18,11 +18,11 @@ struct CliResult {
   std::string out, err;
 };
 
-/// `radarslam ARGS` (ARGS shell-quoted by the caller); stdout.txt and stderr.txt go to `dir`.
-inline CliResult runCli(const std::string& args, const std::filesystem::path& dir) {
+/// Runs the shell command line `command` (arguments shell-quoted by the caller) with its stdout
+/// and stderr captured in stdout.txt and stderr.txt of `dir`.
+inline CliResult runCommand(const std::string& command, const std::filesystem::path& dir) {
   const auto out_file = dir / "stdout.txt", err_file = dir / "stderr.txt";
-  const std::string cmd = std::string(RADARSLAM_CLI) + " " + args + " > '" + out_file.string() + "' 2> '" +
-                          err_file.string() + "'";
+  const std::string cmd = command + " > '" + out_file.string() + "' 2> '" + err_file.string() + "'";
   const int status = std::system(cmd.c_str());
   CliResult r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -30,6 +30,11 @@ inline CliResult runCli(const std::string& args, const std::filesystem::path& di
   r.out.assign(std::istreambuf_iterator<char>(o), {});
   r.err.assign(std::istreambuf_iterator<char>(e), {});
   return r;
+}
+
+/// `radarslam ARGS` (ARGS shell-quoted by the caller); stdout.txt and stderr.txt go to `dir`.
+inline CliResult runCli(const std::string& args, const std::filesystem::path& dir) {
+  return runCommand(std::string(RADARSLAM_CLI) + " " + args, dir);
 }
 
 inline CliResult runCli(const std::string& args, const TempDir& tmp) { return runCli(args, tmp.path()); }

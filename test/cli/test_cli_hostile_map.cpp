@@ -17,9 +17,11 @@
 #include <string>
 
 #include "../map/synthetic_map.h"
+#include "cli_run.h"
 #include "radarslam/io/oxford_writer.h"
 #include "radarslam/map/map_io.h"
 #include "radarslam/obs/registration.h"
+#include "synthetic_oxford.h"
 #include "temp_dir.h"
 
 namespace {
@@ -27,22 +29,11 @@ namespace {
 namespace fs = std::filesystem;
 using radarslam::KeyframeMap;
 
-struct CliRun {
-  int code = -1;
-  std::string err;
-};
+using CliRun = radarslam::test::CliResult;
 
 // `timeout 20 radarslam ARGS` (ARGS shell-quoted by the caller).
 CliRun radarslamRun(const std::string& args, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = "timeout 20 " + std::string(RADARSLAM_CLI) + " " + args + " > '" + out.string() +
-                          "' 2> '" + err.string() + "'";
-  const int status = std::system(cmd.c_str());
-  CliRun r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err);
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
-  return r;
+  return radarslam::test::runCommand("timeout 20 " + std::string(RADARSLAM_CLI) + " " + args, dir);
 }
 
 std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
@@ -63,19 +54,7 @@ class HostileMap : public ::testing::Test {
     radarslam::registerRadarslamClasses();
     root_ = new fs::path(fs::temp_directory_path() / ("radarslam_cli_hostile_" + std::to_string(::getpid())));
     fs::create_directories(*root_);
-    radarslam::OxfordWriter w(*root_ / "ds");
-    std::mt19937 rng(5);
-    for (int i = 0; i < 4; ++i) {
-      radarslam::CObservationRadarScan scan;
-      scan.resize(400, 200);
-      scan.range_resolution_m = 0.0438;
-      for (auto& p : scan.power) p = static_cast<std::uint8_t>(rng() % 80);
-      for (std::uint32_t a = 0; a < 400; ++a)
-        scan.azimuth_stamps_ns[a] = 1'600'000'000'000'000'000LL + i * 250'000'000LL + a * 625'000LL;
-      scan.updateReferenceTime();
-      w.writeScan(scan, mrpt::math::TPose2D(i * 1.0, 0, 0));
-    }
-    w.finish();
+    radarslam::test::writeNoiseOxfordDataset(*root_ / "ds", 4, 5);
   }
   static void TearDownTestSuite() {
     std::error_code ec;

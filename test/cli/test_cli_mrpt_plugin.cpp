@@ -21,19 +21,10 @@ using namespace radarslam;
 
 namespace {
 
-struct Shell {
-  int code = -1;
-  std::string out;
-};
-
-Shell rawlogEdit(const std::string& args, const fs::path& dir) {
-  const fs::path out = dir / "rawlog-edit.txt";
-  const std::string cmd = "rawlog-edit " + args + " > '" + out.string() + "' 2>&1";
-  const int status = std::system(cmd.c_str());
-  Shell r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(out);
-  r.out.assign(std::istreambuf_iterator<char>(in), {});
+// rawlog-edit ARGS, its stdout and stderr together in `out`.
+test::CliResult rawlogEdit(const std::string& args, const fs::path& dir) {
+  test::CliResult r = test::runCommand("rawlog-edit " + args, dir);
+  r.out += r.err;
   return r;
 }
 
@@ -65,10 +56,10 @@ TEST_F(MrptPlugin, RawlogEditListsDescribesAndCutsOurScans) {
   const auto reader = openDataset(rawlog);
   ASSERT_EQ(reader->size(), 11u);
 
-  const Shell without = rawlogEdit("-i '" + rawlog.string() + "' --info", tmp_.path());
+  const test::CliResult without = rawlogEdit("-i '" + rawlog.string() + "' --info", tmp_.path());
   EXPECT_NE(without.out.find("Overall number of objects         : 1\n"), std::string::npos) << without.out;
 
-  const Shell info = rawlogEdit(plugin_ + "-i '" + rawlog.string() + "' --info", tmp_.path());
+  const test::CliResult info = rawlogEdit(plugin_ + "-i '" + rawlog.string() + "' --info", tmp_.path());
   ASSERT_EQ(info.code, 0) << info.out;
   EXPECT_NE(info.out.find("Overall number of objects         : 11\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("All sensor labels                 : radar"), std::string::npos) << info.out;
@@ -94,7 +85,8 @@ TEST_F(MrptPlugin, RawlogEditListsDescribesAndCutsOurScans) {
   for (std::size_t i = 0; i < listed.size(); ++i)
     EXPECT_NEAR(listed[i], mrpt::Clock::toDouble(reader->readScan(i)->timestamp), 2e-6) << "scan " << i;
 
-  const Shell describe = rawlogEdit(plugin_ + "-i '" + rawlog.string() + "' --describe", tmp_.path());
+  const test::CliResult describe =
+      rawlogEdit(plugin_ + "-i '" + rawlog.string() + "' --describe", tmp_.path());
   ASSERT_EQ(describe.code, 0) << describe.out;
   EXPECT_EQ(count(describe.out, "ClassName: radarslam::CObservationRadarScan"), 11u) << describe.out;
   EXPECT_EQ(count(describe.out, "Radar scan: 400 azimuths x 3768 bins, 0.0432 m/bin"), 11u) << describe.out;

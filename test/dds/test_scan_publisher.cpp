@@ -8,6 +8,7 @@
 #include <radarslam/obs/registration.h>
 
 #include "dds_test_util.h"
+#include "synthetic_oxford.h"
 #include "temp_dir.h"
 
 namespace radarslam {
@@ -19,21 +20,7 @@ TEST(ScanPublisher, ReplaysADatasetToAScanSubscriber) {
   registerRadarslamClasses();
   test::TempDir tmp;
   const auto dir = tmp.path() / "ds";
-  {
-    OxfordWriter w(dir);
-    std::mt19937 rng(3);
-    for (int i = 0; i < 5; ++i) {
-      CObservationRadarScan scan;
-      scan.resize(400, 200);
-      scan.range_resolution_m = 0.0438;
-      for (auto& p : scan.power) p = static_cast<std::uint8_t>(rng() % 80);
-      for (std::uint32_t a = 0; a < 400; ++a)
-        scan.azimuth_stamps_ns[a] = 1'600'000'000'000'000'000LL + i * 250'000'000LL + a * 625'000LL;
-      scan.updateReferenceTime();
-      w.writeScan(scan, mrpt::math::TPose2D(i * 1.0, 0, 0));
-    }
-    w.finish();
-  }
+  test::writeNoiseOxfordDataset(dir, 5, 3);
   const auto reader = openDataset(dir);
   ASSERT_EQ(reader->size(), 5u);
 
