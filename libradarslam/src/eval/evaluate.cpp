@@ -17,13 +17,9 @@ void checkTrajectory(const Trajectory& t, const std::string& label) {
 }  // namespace
 
 void loadParams(const YamlParams& section, EvalParams& params) {
-  section.get("kitti_lengths_m", params.kitti.lengths_m);
-  section.get("kitti_step_frames", params.kitti.step_frames);
-  section.get("max_gt_gap_s", params.max_gt_gap_s);
-  if (params.kitti.step_frames == 0) throw InputError(section.origin(), "kitti_step_frames must be >= 1");
-  for (double l : params.kitti.lengths_m)
-    if (!(l > 0)) throw InputError(section.origin(), "kitti_lengths_m must be positive");
-  if (!(params.max_gt_gap_s > 0)) throw InputError(section.origin(), "max_gt_gap_s must be positive");
+  section.get("kitti_lengths_m", params.kitti.lengths_m, Range::above(0, 1e5), 100);
+  section.get("kitti_step_frames", params.kitti.step_frames, Range::closed(1, 1000000.0));
+  section.get("max_gt_gap_s", params.max_gt_gap_s, Range::above(0, 1000000.0));
 }
 
 EvalReport evaluate(const Trajectory& est, const Trajectory& gt, const EvalParams& params,
