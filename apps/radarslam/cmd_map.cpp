@@ -97,8 +97,10 @@ int runMap(int argc, char** argv) {
   const std::string where = "radarslam map";
   if (first_arg.getValue() < 0) throw InputError(where, "--first must be >= 0");
   if (count_arg.isSet() && count_arg.getValue() < 1) throw InputError(where, "--count must be >= 1");
-  if (threads_arg.isSet() && threads_arg.getValue() < 1) throw InputError(where, "--threads must be >= 1");
-  if (!(grid_res_arg.getValue() > 0)) throw InputError(where, "--grid-resolution must be > 0");
+  if (threads_arg.isSet() && (threads_arg.getValue() < 1 || threads_arg.getValue() > 64))
+    throw InputError(where, "--threads must be in 1..64");
+  if (!(grid_res_arg.getValue() >= 0.01 && grid_res_arg.getValue() <= 100))
+    throw InputError(where, "--grid-resolution must be in [0.01, 100] m");
   const fs::path dir = dir_arg.getValue();
   if (!fs::exists(dir)) throw InputError(dir.string(), "no such file or directory");
   const fs::path map_dir = resolveMapPath(out_arg.getValue());

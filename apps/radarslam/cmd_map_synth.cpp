@@ -34,7 +34,8 @@ int runMapSynth(int argc, char** argv) {
   TCLAP::ValueArg<unsigned> max_arg("", "max-keyframes", "Stop after this many keyframes (0 = all)", false, 0,
                                     "N", cmd.tclap());
   cmd.parse(argc, argv);
-  if (!(every_arg.getValue() > 0.0)) throw InputError("radarslam map-synth", "--every must be > 0");
+  if (!(every_arg.getValue() > 0.0 && every_arg.getValue() <= 1e4))
+    throw InputError("radarslam map-synth", "--every must be in (0, 10000] m");
 
   const auto reader = openDataset(data_arg.getValue());
   if (!reader->hasGroundTruth())

@@ -11,11 +11,6 @@ namespace radarslam {
 
 namespace {
 
-bool opensToken(char prev) {
-  return prev == ' ' || prev == '\t' || prev == '[' || prev == '{' || prev == ',' || prev == ':' ||
-         prev == '-' || prev == '\n';
-}
-
 /// Length of the UTF-8 sequence starting at text[i], or 0 if it is not a valid one.
 std::size_t utf8Length(std::string_view text, std::size_t i) {
   const auto b = static_cast<std::uint8_t>(text[i]);
@@ -81,9 +76,10 @@ std::size_t yamlNestingDepth(std::string_view text, std::size_t stop_above) {
     }
     deepest = std::max(deepest, depth_here + flow);
     if (deepest > stop_above) return deepest;
-    // The rest of the line.
-    char prev = '\n';
-    for (; i < text.size() && text[i] != '\n'; prev = text[i], ++i) {
+    // The rest of the line. `boundary`: the next character may start a token (a quote or a
+    // flow collection); inside a plain scalar ("x[1]", "it's") brackets and quotes are text.
+    bool boundary = true;
+    for (; i < text.size() && text[i] != '\n'; ++i) {
       const char c = text[i];
       if (quote != 0) {
         if (c == '\\' && quote == '"' && i + 1 < text.size() && text[i + 1] != '\n')
@@ -92,19 +88,24 @@ std::size_t yamlNestingDepth(std::string_view text, std::size_t stop_above) {
           quote = 0;
         continue;
       }
-      if (c == '#' && (prev == ' ' || prev == '\t' || prev == '\n')) {
+      const bool space = c == ' ' || c == '\t';
+      if (c == '#' && boundary &&
+          (space || i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t' || text[i - 1] == '\n')) {
         while (i < text.size() && text[i] != '\n') ++i;
         break;
       }
-      if ((c == '\'' || c == '"') && opensToken(prev)) {
+      bool opened = false;
+      if ((c == '\'' || c == '"') && boundary) {
         quote = c;
-      } else if ((c == '[' || c == '{') && (flow > 0 || opensToken(prev))) {
+      } else if ((c == '[' || c == '{') && boundary) {
         ++flow;
+        opened = true;
         deepest = std::max(deepest, depth_here + flow);
         if (deepest > stop_above) return deepest;
       } else if ((c == ']' || c == '}') && flow > 0) {
         --flow;
       }
+      boundary = space || opened || c == ',' || c == ':' || c == '-' || c == '?';
     }
     if (i < text.size()) ++i;  // the '\n'
   }
@@ -112,6 +113,12 @@ std::size_t yamlNestingDepth(std::string_view text, std::size_t stop_above) {
 }
 
 std::string yamlTextProblem(std::string_view text) {
+  // NUL bytes first: they mark a binary file wherever they are (a PNG's first byte is not UTF-8).
+  if (const auto nul = text.find('\0'); nul != std::string_view::npos)
+    return "contains a NUL byte at line " +
+           std::to_string(1 +
+                          std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n')) +
+           " (binary file?)";
   std::size_t line = 1;
   for (std::size_t i = 0; i < text.size();) {
     const auto b = static_cast<std::uint8_t>(text[i]);
@@ -120,7 +127,6 @@ std::string yamlTextProblem(std::string_view text) {
       ++i;
       continue;
     }
-    if (b == 0) return "contains a NUL byte at line " + std::to_string(line) + " (binary file?)";
     if ((b < 0x20 && b != '\t' && b != '\r') || b == 0x7F) {
       char hex[8];
       std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned>(b));
@@ -128,7 +134,7 @@ std::string yamlTextProblem(std::string_view text) {
              " (binary file?)";
     }
     const std::size_t n = utf8Length(text, i);
-    if (n == 0) return "is not valid UTF-8 text (line " + std::to_string(line) + ")";
+    if (n == 0) return "is not valid UTF-8 text (line " + std::to_string(line) + "; binary file?)";
     i += n;
   }
   return {};

@@ -46,6 +46,9 @@ std::vector<std::filesystem::path> exportOccupancyGrid(const KeyframeMap& map,
 struct OctomapExportParams {
   double resolution_m = 0.2;
   double max_range_m = -1.0;  ///< insertPointCloud max range (-1 = unlimited)
+  /// Refuse (InputError) trees whose rays would touch more voxels than this (estimated from the
+  /// keyframes' bounding boxes), and maps farther than 32767 voxels from the origin (OctoMap keys).
+  std::size_t max_voxels = 100'000'000;
 };
 /// Writes STEM.bt (writeBinaryConst) and STEM.ot (write) into `dir`.
 std::vector<std::filesystem::path> exportOctomap(const KeyframeMap& map, const std::filesystem::path& dir,
