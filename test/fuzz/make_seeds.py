@@ -120,3 +120,11 @@ put("yaml_params", "modules.yaml",
     "odometry:\n  matching:\n    radius_m: 5\n  tracking:\n    min_inliers: 10\n"
     "m2dp:\n  rings: 8\nloop_detector:\n  max_candidates: 5\nloop_verifier:\n  min_inliers: 20\n"
     "pose_graph:\n  max_iterations: 50\n")
+# Nesting just past YamlParams' limit (kMaxYamlDepth = 64) in the three forms the pre-scan
+# counts (flow brackets, flow maps, block indentation) and an out-of-range value: mutations
+# explore both sides of the depth limit and of the range checks.
+put("yaml_params", "deep_nesting.yaml",
+    "odometry:\n  keypoints:\n    max_keypoints: 1e9\n" +
+    "x: " + "[" * 70 + "]" * 70 + "\n" +
+    "y: " + "{a: " * 40 + "1" + "}" * 40 + "\n" +
+    "".join(" " * i + "z:\n" for i in range(70)) + " " * 70 + "w: 1\n")
