@@ -149,9 +149,9 @@ TEST_P(HostileConfigRange, OdometryConfigIsOneLineErrorNamingFileAndKey) {
 INSTANTIATE_TEST_SUITE_P(
     HostileConfig, HostileConfigRange,
     ::testing::Values(
-        BadValue{"MaxKeypoints", "odometry:\n  keypoints:\n    max_keypoints: 1e9\n",
+        BadValue{"MaxKeypoints", "odometry:\n  keypoints:\n    max_keypoints: 1000000000\n",
                  "odometry.keypoints.max_keypoints"},
-        BadValue{"CompensationPasses", "odometry:\n  tracking:\n    compensation_passes: 1e9\n",
+        BadValue{"CompensationPasses", "odometry:\n  tracking:\n    compensation_passes: 1000000000\n",
                  "odometry.tracking.compensation_passes"},
         BadValue{"BlurSigma", "odometry:\n  keypoints:\n    blur_sigma_px: 1e6\n",
                  "odometry.keypoints.blur_sigma_px"},
@@ -186,9 +186,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadValue{"PeakRangeOrder",
                  "slam:\n  loop_closure:\n    peak_cloud:\n      min_range_m: 50\n      max_range_m: 10\n",
                  "slam.loop_closure.peak_cloud.max_range_m"},
-        BadValue{"Candidates", "slam:\n  loop_closure:\n    detector:\n      max_candidates: 1e9\n",
+        BadValue{"Candidates", "slam:\n  loop_closure:\n    detector:\n      max_candidates: 1000000000\n",
                  "slam.loop_closure.detector.max_candidates"},
-        BadValue{"PoseGraph", "slam:\n  pose_graph:\n    max_iterations: 1e9\n",
+        BadValue{"PoseGraph", "slam:\n  pose_graph:\n    max_iterations: 1000000000\n",
                  "slam.pose_graph.max_iterations"}),
     [](const auto& param_info) { return param_info.param.name; });
 
@@ -269,7 +269,9 @@ TEST(HostileConfigPhysical, OctomapOfTooManyVoxelsIsRefusedWithItsSize) {
   const fs::path map = tmp / "map";
   CliResult r = runCli("map-synth " + quoted(data) + " -o " + quoted(map), tmp);
   ASSERT_EQ(r.code, 0) << r.err;
-  r = runCli("export " + quoted(map) + " --octomap --resolution 0.005 --verbosity WARN -o " + quoted(tmp / "out"), tmp);
+  r = runCli(
+      "export " + quoted(map) + " --octomap --resolution 0.005 --verbosity WARN -o " + quoted(tmp / "out"),
+      tmp);
   expectOneLineError(r, {"voxels", "--resolution"});
   EXPECT_FALSE(fs::exists(tmp / "out" / "map.bt"));
 }

@@ -18,6 +18,9 @@ void loadParams(const YamlParams& yaml, MapTrackerParams& p) {
   yaml.get("max_jump_m", p.max_jump_m, Range::above(0, 1000));
   yaml.get("max_jump_deg", p.max_jump_deg, Range::above(0, 180));
   yaml.get("max_position_sigma_m", p.max_position_sigma_m, Range::above(0, 1000));
+  p.min_inliers = static_cast<std::size_t>(min_inliers);
+  loadParams(yaml.section("submap"), p.submap);
+  loadParams(yaml.section("icp"), p.icp);
 }
 
 MapTracker::MapTracker(const KeyframeMap& map, const MapTrackerParams& params) : map_(map), params_(params) {}
