@@ -10,11 +10,7 @@ namespace {
 void checkTrajectory(const Trajectory& t, const std::string& label) {
   if (const auto bad = firstNonIncreasingStamp(t))
     throw InputError(label, "timestamps do not strictly increase at pose " + std::to_string(*bad + 1));
-  for (std::size_t i = 0; i < t.size(); ++i)
-    if (!std::isfinite(t[i].pose.x) || !std::isfinite(t[i].pose.y) || !std::isfinite(t[i].pose.phi))
-      throw InputError(label, "pose " + std::to_string(i + 1) + " is not finite");
-    else if (std::abs(t[i].pose.x) > kMaxCoordinateM || std::abs(t[i].pose.y) > kMaxCoordinateM)
-      throw InputError(label, "pose " + std::to_string(i + 1) + " is farther than 1e7 m from the origin");
+  checkPlausiblePoses(t, label);
 }
 }  // namespace
 
