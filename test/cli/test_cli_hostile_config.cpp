@@ -277,3 +277,16 @@ TEST(HostileConfigPhysical, OctomapOfTooManyVoxelsIsRefusedWithItsSize) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(HostileConfigShipped, ShippedSimulatorConfigIsInRange) {
+  // config/<sensor>.yaml are covered by SlamParams.EveryShippedConfigLoadsWithNoUnknownKey.
+  TempDir tmp;
+  const fs::path src = RADARSLAM_SOURCE_DIR;
+  const CliResult r = runCli(
+      "simulate " + quoted(tmp / "sim") + " --scans 1 --config " + quoted(src / "config" / "sim.yaml"), tmp);
+  EXPECT_EQ(r.code, 0) << r.err;
+}
+
+}  // namespace
