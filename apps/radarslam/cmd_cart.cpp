@@ -40,7 +40,8 @@ int runCart(int argc, char** argv) {
   const std::string where = "radarslam cart";
   if (size_arg.getValue() <= 0 || size_arg.getValue() > 20000)
     throw InputError(where, "--size must be in 1..20000 (got " + std::to_string(size_arg.getValue()) + ")");
-  if (!(res_arg.getValue() > 0.0)) throw InputError(where, "--resolution must be > 0");
+  if (!(res_arg.getValue() >= 0.001 && res_arg.getValue() <= 100))
+    throw InputError(where, "--resolution must be in [0.001, 100] m/px");
   if (index_arg.getValue() < 0) throw InputError(where, "--index must be >= 0");
 
   const std::filesystem::path path = path_arg.getValue(), out = out_arg.getValue();

@@ -35,9 +35,11 @@ std::vector<double> parseLengths(const std::string& text, const std::string& whe
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used == 0 || used != item.size() || !(v > 0))
+    if (used == 0 || used != item.size() || !(v > 0 && v <= 1e5) || out.size() >= 100)
       throw InputError(
-          where, std::string("--lengths: expected positive numbers separated by commas, got '") + text + "'");
+          where,
+          std::string("--lengths: expected at most 100 numbers in (0, 100000] separated by commas, got '") +
+              text + "'");
     out.push_back(v);
   }
   if (out.empty()) throw InputError(where, "--lengths is empty");
@@ -97,8 +99,10 @@ int runEval(int argc, char** argv) {
   params.kitti.step_frames = step_arg.getValue();
   params.kitti.lengths_m = parseLengths(lengths_arg.getValue(), where);
   params.max_gt_gap_s = gap_arg.getValue();
-  if (params.kitti.step_frames == 0) throw InputError(where, "--step must be >= 1");
-  if (!(params.max_gt_gap_s > 0)) throw InputError(where, "--max-gt-gap must be > 0");
+  if (params.kitti.step_frames == 0 || params.kitti.step_frames > 1000000)
+    throw InputError(where, "--step must be in 1..1000000");
+  if (!(params.max_gt_gap_s > 0 && params.max_gt_gap_s <= 1e6))
+    throw InputError(where, "--max-gt-gap must be in (0, 1000000] s");
 
   const fs::path est_path = est_arg.getValue(), gt_path = gt_arg.getValue();
   TrajectoryReadOptions est_options, gt_options;

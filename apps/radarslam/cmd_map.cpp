@@ -107,7 +107,8 @@ int runMap(int argc, char** argv) {
   const std::string where = "radarslam map";
   if (first_arg.getValue() < 0) throw InputError(where, "--first must be >= 0");
   if (count_arg.isSet() && count_arg.getValue() < 1) throw InputError(where, "--count must be >= 1");
-  if (threads_arg.isSet() && threads_arg.getValue() < 1) throw InputError(where, "--threads must be >= 1");
+  if (threads_arg.isSet() && (threads_arg.getValue() < 1 || threads_arg.getValue() > 64))
+    throw InputError(where, "--threads must be in 1..64");
   // A grid finer than 1 cm would not fit in memory for any real map (checked again on the map's
   // extent when the grid is made, before the map is swapped into place).
   if (!(grid_res_arg.getValue() >= 0.01 && grid_res_arg.getValue() <= 100))

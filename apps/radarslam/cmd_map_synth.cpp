@@ -41,7 +41,8 @@ int runMapSynth(int argc, char** argv) {
                              "replaced; a non-empty directory that is not a map never is)",
                              cmd.tclap());
   cmd.parse(argc, argv);
-  if (!(every_arg.getValue() > 0.0)) throw InputError("radarslam map-synth", "--every must be > 0");
+  if (!(every_arg.getValue() > 0.0 && every_arg.getValue() <= 1e4))
+    throw InputError("radarslam map-synth", "--every must be in (0, 10000] m");
   if (out_arg.getValue().empty()) throw InputError("-o", "empty output path");
   const auto dir = resolveMapPath(out_arg.getValue());
   checkNoOverlap(data_arg.getValue(), dir);

@@ -166,14 +166,17 @@ int runSimulate(int argc, char** argv) {
   if (scans.isSet() && length.isSet())
     throw InputError("radarslam simulate", "give --scans or --length-m, not both");
   if (scans.isSet()) {
-    if (scans.getValue() < 1) throw InputError("--scans", "must be >= 1");
+    if (scans.getValue() < 1 || scans.getValue() > 100000)
+      throw InputError("--scans", "must be in 1..100000");
     config.scans = scans.getValue(), config.length_m = 0;
   }
   if (length.isSet()) {
-    if (!(length.getValue() > 10)) throw InputError("--length-m", "must be > 10");
+    if (!(length.getValue() > 10 && length.getValue() <= 1e5))
+      throw InputError("--length-m", "must be in (10, 100000]");
     config.length_m = length.getValue(), config.scans = 0;
   }
   if (traversal.isSet()) config.traversal = traversal.getValue();
+  if (config.traversal < 1 || config.traversal > 2) throw InputError("--traversal", "must be 1 or 2");
   if (!weather.getValue().empty()) config.weather = weather.getValue();
   sim::weatherPreset(config.weather);  // validates the name
   if (azimuths.isSet()) config.geometry.azimuths = azimuths.getValue();
@@ -183,7 +186,10 @@ int runSimulate(int argc, char** argv) {
   const auto& g = config.geometry;
   if (g.azimuths < 8 || g.azimuths > 16384) throw InputError("--azimuths", "must be in 8..16384");
   if (g.bins < 16 || g.bins > 65535) throw InputError("--bins", "must be in 16..65535");
-  if (!(g.range_resolution_m > 0)) throw InputError("--resolution", "must be > 0");
+  if (!(g.range_resolution_m >= 0.001 && g.range_resolution_m <= 10))
+    throw InputError("--resolution", "must be in [0.001, 10] m/bin");
+  if (static_cast<long long>(g.azimuths) * g.bins > (1LL << 24))
+    throw InputError("--azimuths", "azimuths x bins must be <= 16777216 (one scan image)");
   if (!(g.rotation_hz > 0.1 && g.rotation_hz <= 40)) throw InputError("--rpm", "must be in 6..2400");
 
   if (!compare.getValue().empty()) {

@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 
+#include "radarslam/core/errors.h"
 #include "radarslam/core/trajectory.h"
 
 using namespace radarslam;
@@ -24,4 +26,16 @@ TEST(Trajectory, DetectsNonIncreasingStamps) {
   Trajectory t{{0, {}}, {5, {}}, {5, {}}};
   ASSERT_TRUE(firstNonIncreasingStamp(t));
   EXPECT_EQ(*firstNonIncreasingStamp(t), 2u);
+}
+
+TEST(TrajectoryPlausibility, RefusesNonFiniteAndFarPoses) {
+  Trajectory t{{1, TPose2D(0, 0, 0)}, {2, TPose2D(1e6, -9.9e6, 0.1)}};
+  EXPECT_FALSE(firstImplausiblePose(t));
+  EXPECT_NO_THROW(checkPlausiblePoses(t, "gt.csv"));
+  for (double bad : {1e308, -2e7, std::nan(""), HUGE_VAL}) {
+    Trajectory u = t;
+    u.push_back({3, TPose2D(bad, 0, 0)});
+    EXPECT_EQ(firstImplausiblePose(u), 2u);
+    EXPECT_THROW(checkPlausiblePoses(u, "gt.csv"), InputError);
+  }
 }

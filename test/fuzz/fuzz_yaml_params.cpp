@@ -1,7 +1,9 @@
 // Fuzz target: YAML configs. YamlParams::fromText (MRPT's YAML parser) then every module's
 // loadParams: the whole odometry config (OdometryParams: `cartesian:` + `odometry:`, as
 // `radarslam odometry --config` reads it), `peak_cloud:`, the loop closure (`m2dp:`,
-// `loop_detector:`, `loop_verifier:`) and back end (`pose_graph:`), every get() type, unknown keys.
+// `loop_detector:`, `loop_verifier:`) and back end (`pose_graph:`), every get() type with and
+// without a Range, unknown keys. Deep nesting (seeds/yaml_params/deep_nesting.yaml) must be an
+// InputError from the pre-scan, never a stack overflow in the parser.
 #include "fuzz_common.h"
 #include "radarslam/backend/pose_graph.h"
 #include "radarslam/core/yaml_params.h"
@@ -48,6 +50,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     other.get("b", b);
     other.get("s", s);
     other.get("v", v);
+    other.get("rd", d, radarslam::Range::closed(-1, 1));
+    other.get("rf", f, radarslam::Range::above(0, 1));
+    other.get("ri", i, radarslam::Range::closed(0, 100));
+    other.get("ru", u, radarslam::Range::closed(0, 100));
+    long l = 0;
+    std::size_t z = 0;
+    other.get("rl", l, radarslam::Range::closed(0, 1e6));
+    other.get("rz", z, radarslam::Range::closed(0, 1e6));
+    other.get("rv", v, radarslam::Range::closed(0, 10), 8);
     yaml.rejectUnknownKeys();
   });
   return 0;

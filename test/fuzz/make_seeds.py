@@ -135,3 +135,13 @@ def radar_scan_sample(azimuths=16, bins=16, first_ns=1600000000000000000, step_n
 
 
 put("dds_radar_scan", "scan_16x16.bin", radar_scan_sample())
+
+
+# Nesting just past YamlParams' limit (kMaxYamlDepth = 64) in the three forms the pre-scan
+# counts (flow brackets, flow maps, block indentation) and an out-of-range value: mutations
+# explore both sides of the depth limit and of the range checks.
+put("yaml_params", "deep_nesting.yaml",
+    "odometry:\n  keypoints:\n    max_keypoints: 1e9\n" +
+    "x: " + "[" * 70 + "]" * 70 + "\n" +
+    "y: " + "{a: " * 40 + "1" + "}" * 40 + "\n" +
+    "".join(" " * i + "z:\n" for i in range(70)) + " " * 70 + "w: 1\n")

@@ -17,12 +17,9 @@
 namespace radarslam {
 
 void loadParams(const YamlParams& yaml, PoseGraphParams& params) {
-  yaml.get("max_iterations", params.max_iterations);
-  yaml.get("loop_chi2_gate", params.loop_chi2_gate);
-  yaml.get("max_loop_rejections", params.max_loop_rejections);
-  if (params.max_iterations < 1 || !(params.loop_chi2_gate > 0) || params.max_loop_rejections < 0)
-    throw InputError(yaml.origin(),
-                     "pose graph: max_iterations >= 1, loop_chi2_gate > 0, max_loop_rejections >= 0");
+  yaml.get("max_iterations", params.max_iterations, Range::closed(1, 10000));
+  yaml.get("loop_chi2_gate", params.loop_chi2_gate, Range::above(0, 1000000.0));
+  yaml.get("max_loop_rejections", params.max_loop_rejections, Range::closed(0, 10000));
 }
 
 PoseGraph::PoseGraph(const PoseGraphParams& params) : params_(params) {}

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "radarslam/core/errors.h"
+
 namespace radarslam {
 
 std::optional<mrpt::math::TPose2D> interpolatePose(const Trajectory& traj, StampNs t, StampNs max_gap_ns) {
@@ -26,6 +28,23 @@ double pathLength(const Trajectory& traj) {
   for (std::size_t i = 1; i < traj.size(); ++i)
     len += std::hypot(traj[i].pose.x - traj[i - 1].pose.x, traj[i].pose.y - traj[i - 1].pose.y);
   return len;
+}
+
+std::optional<std::size_t> firstImplausiblePose(const Trajectory& traj) {
+  for (std::size_t i = 0; i < traj.size(); ++i) {
+    const auto& p = traj[i].pose;
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.phi) ||
+        std::abs(p.x) > kMaxCoordinateM || std::abs(p.y) > kMaxCoordinateM)
+      return i;
+  }
+  return std::nullopt;
+}
+
+void checkPlausiblePoses(const Trajectory& traj, const std::string& where) {
+  if (const auto i = firstImplausiblePose(traj))
+    throw InputError(where, "pose " + std::to_string(*i + 1) + " (" + std::to_string(traj[*i].pose.x) + ", " +
+                                std::to_string(traj[*i].pose.y) +
+                                ") is not finite or farther than 1e7 m from the origin");
 }
 
 std::optional<std::size_t> firstNonIncreasingStamp(const Trajectory& traj) {

@@ -3,12 +3,17 @@
 #include <mrpt/containers/yaml.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <regex>
 #include <sstream>
 
 #include "radarslam/core/errors.h"
+#include "radarslam/core/yaml_text_check.h"
+#include "stderr_capture.h"
 
 namespace radarslam {
 
@@ -57,18 +62,52 @@ YamlParams::~YamlParams() = default;
 YamlParams::YamlParams(const YamlParams&) = default;
 YamlParams& YamlParams::operator=(const YamlParams&) = default;
 
-YamlParams YamlParams::fromText(const std::string& text, const std::string& origin) {
+namespace {
+/// The first libfyaml diagnostic ("<memory-@...>:3:1: error: flow sequence without a closing
+/// bracket") as "line 3, column 1: flow sequence without a closing bracket", or "".
+std::string parserDiagnostic(const std::string& output) {
+  static const std::regex kDiag(R"(:(\d+):(\d+): error: ([^\n]*))");
+  std::smatch m;
+  if (!std::regex_search(output, m, kDiag)) return {};
+  return "line " + m[1].str() + ", column " + m[2].str() + ": " + trim(m[3].str());
+}
+
+/// True if the text has anything but whitespace and comments.
+bool hasContent(const std::string& text) {
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    const std::string t = trim(line);
+    if (!t.empty() && t[0] != '#' && t != "---" && t != "...") return true;
+  }
+  return false;
+}
+}  // namespace
+
+YamlParams YamlParams::fromText(const std::string& text_in, const std::string& origin) {
+  // A UTF-8 byte order mark is allowed (editors write it) and dropped.
+  const std::string text = text_in.rfind("\xEF\xBB\xBF", 0) == 0 ? text_in.substr(3) : text_in;
+  checkYamlText(text, origin);
   YamlParams p;
   p.impl_->origin = origin;
-  try {
-    p.impl_->doc = mrpt::containers::yaml::FromText(text);
-  } catch (const std::exception& e) {
-    std::string msg = e.what();
-    msg = trim(msg.substr(0, msg.find('\n')));
-    throw InputError(origin, "invalid YAML: " + msg);
+  const detail::Captured parsed =
+      detail::captureStderr([&] { p.impl_->doc = mrpt::containers::yaml::FromText(text); });
+  if (const std::string diag = parserDiagnostic(parsed.output); !diag.empty())
+    throw InputError(origin, "invalid YAML at " + diag);
+  if (parsed.error) {
+    try {
+      std::rethrow_exception(parsed.error);
+    } catch (const std::exception& e) {
+      std::string msg = e.what();
+      const auto m = msg.find("Message:");
+      msg = m == std::string::npos ? msg : msg.substr(m + 8);
+      throw InputError(origin, "invalid YAML: " + trim(msg.substr(0, msg.find('\n'))));
+    }
   }
-  if (!p.impl_->doc.isNullNode() && !p.impl_->doc.isMap())
-    throw InputError(origin, "expected a YAML map of parameters at the top level");
+  if (!parsed.output.empty()) std::fputs(parsed.output.c_str(), stderr);  // not the parser's
+  const bool empty = p.impl_->doc.isNullNode() && !hasContent(text);
+  if (!empty && !p.impl_->doc.isMap())
+    throw InputError(origin, "expected a YAML map of parameters at the top level, got " +
+                                 std::string(p.impl_->doc.isSequence() ? "a list" : "a single value"));
   p.node_ = std::shared_ptr<void>(p.impl_, &p.impl_->doc.node());
   collectKeys(p.impl_->doc.node(), "", p.impl_->all);
   return p;
@@ -187,6 +226,89 @@ void YamlParams::get(const std::string& key, std::vector<double>& value) const {
   }
   value = std::move(out);
   markUsed(key);
+}
+
+namespace {
+std::string number(double v) {
+  std::ostringstream os;
+  os.precision(12);
+  os << v;
+  return os.str();
+}
+}  // namespace
+
+bool Range::contains(double v) const {
+  if (std::isnan(v)) return false;
+  const bool lo_ok = lo_open ? v > lo : v >= lo;
+  const bool hi_ok = hi_open ? v < hi : v <= hi;
+  return lo_ok && hi_ok;
+}
+
+std::string Range::text() const {
+  return (lo_open ? "(" : "[") + number(lo) + ", " + number(hi) + (hi_open ? ")" : "]");
+}
+
+void YamlParams::fail(const std::string& key, const std::string& problem) const {
+  throw InputError(impl_->origin, "key '" + prefix_ + key + "': " + problem);
+}
+
+void YamlParams::check(const std::string& key, double value, const Range& range) const {
+  if (!range.contains(value)) fail(key, number(value) + " is out of range " + range.text());
+}
+
+void YamlParams::get(const std::string& key, double& value, const Range& range) const {
+  if (!has(key)) return;
+  double v = value;
+  get(key, v);
+  check(key, v, range);
+  value = v;
+}
+
+void YamlParams::get(const std::string& key, float& value, const Range& range) const {
+  double v = value;
+  get(key, v, range);
+  value = static_cast<float>(v);
+}
+
+void YamlParams::get(const std::string& key, int& value, const Range& range) const {
+  if (!has(key)) return;
+  // Read as a number first so that "1e9" is reported as out of range, not as a bad integer.
+  double d = value;
+  get(key, d);
+  check(key, d, range);
+  if (d != std::floor(d)) fail(key, "expected an integer, got " + number(d));
+  value = static_cast<int>(d);
+}
+
+void YamlParams::get(const std::string& key, unsigned& value, const Range& range) const {
+  int v = static_cast<int>(value);
+  get(key, v, range);
+  if (v < 0) fail(key, "expected a non-negative integer");
+  value = static_cast<unsigned>(v);
+}
+
+void YamlParams::get(const std::string& key, long& value, const Range& range) const {
+  int v = static_cast<int>(value);
+  get(key, v, range);
+  value = v;
+}
+
+void YamlParams::get(const std::string& key, std::size_t& value, const Range& range) const {
+  int v = static_cast<int>(value);
+  get(key, v, range);
+  if (v < 0) fail(key, "expected a non-negative integer");
+  value = static_cast<std::size_t>(v);
+}
+
+void YamlParams::get(const std::string& key, std::vector<double>& value, const Range& range,
+                     std::size_t max_items) const {
+  if (!has(key)) return;
+  std::vector<double> v;
+  get(key, v);
+  if (v.size() > max_items) fail(key, "more than " + std::to_string(max_items) + " values");
+  for (double x : v)
+    if (!range.contains(x)) fail(key, number(x) + " is out of range " + range.text());
+  value = std::move(v);
 }
 
 void YamlParams::rejectUnknownKeys() const {

@@ -10,20 +10,14 @@ namespace {
 void checkTrajectory(const Trajectory& t, const std::string& label) {
   if (const auto bad = firstNonIncreasingStamp(t))
     throw InputError(label, "timestamps do not strictly increase at pose " + std::to_string(*bad + 1));
-  for (std::size_t i = 0; i < t.size(); ++i)
-    if (!std::isfinite(t[i].pose.x) || !std::isfinite(t[i].pose.y) || !std::isfinite(t[i].pose.phi))
-      throw InputError(label, "pose " + std::to_string(i + 1) + " is not finite");
+  checkPlausiblePoses(t, label);
 }
 }  // namespace
 
 void loadParams(const YamlParams& section, EvalParams& params) {
-  section.get("kitti_lengths_m", params.kitti.lengths_m);
-  section.get("kitti_step_frames", params.kitti.step_frames);
-  section.get("max_gt_gap_s", params.max_gt_gap_s);
-  if (params.kitti.step_frames == 0) throw InputError(section.origin(), "kitti_step_frames must be >= 1");
-  for (double l : params.kitti.lengths_m)
-    if (!(l > 0)) throw InputError(section.origin(), "kitti_lengths_m must be positive");
-  if (!(params.max_gt_gap_s > 0)) throw InputError(section.origin(), "max_gt_gap_s must be positive");
+  section.get("kitti_lengths_m", params.kitti.lengths_m, Range::above(0, 1e5), 100);
+  section.get("kitti_step_frames", params.kitti.step_frames, Range::closed(1, 1000000.0));
+  section.get("max_gt_gap_s", params.max_gt_gap_s, Range::above(0, 1000000.0));
 }
 
 EvalReport evaluate(const Trajectory& est, const Trajectory& gt, const EvalParams& params,

@@ -93,6 +93,7 @@ PatchAlignResult alignPatch(const AlignImage& ref, cv::Point2f ref_pt, const Ali
   PatchAlignResult out;
   out.position = cur_pt;
   const int r = params.patch_radius_px, s = params.search_radius_px;
+  if (r < 1 || s < 0) return out;  // not a patch (loadParams refuses these; direct callers too)
   const int margin = r + s + 2;
   const int rx = cvRound(ref_pt.x), ry = cvRound(ref_pt.y);
   const int cx = cvRound(cur_pt.x), cy = cvRound(cur_pt.y);

@@ -68,6 +68,7 @@ Trajectory readBoreasGroundTruth(const std::filesystem::path& csv) {
     traj.push_back({t, projectSensorPoseToSE2(pose)});
   });
   if (traj.empty()) throw InputError(csv.string(), "no ground-truth rows");
+  checkPlausiblePoses(traj, csv.string());
   return traj;
 }
 

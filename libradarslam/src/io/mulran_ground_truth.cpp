@@ -45,6 +45,7 @@ Trajectory readMulRanGroundTruth(const std::filesystem::path& csv,
     traj.push_back({t, projectSensorPoseToSE2(first_inv + world_radar)});
   });
   if (traj.empty()) throw InputError(csv.string(), "no ground-truth rows");
+  checkPlausiblePoses(traj, csv.string());
   return traj;
 }
 

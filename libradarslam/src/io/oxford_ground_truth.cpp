@@ -58,6 +58,7 @@ Trajectory chainOxfordOdometry(const std::vector<OxfordOdometryRow>& rows, const
     // T_abs(new) = T_abs(prev) * T_rel  (TPose2D::operator+ is SE(2) composition).
     traj.push_back({r.source, traj.back().pose + r.motion});
   }
+  checkPlausiblePoses(traj, csv.string());
   return traj;
 }
 

@@ -86,6 +86,13 @@ void checkIncreasing(const Trajectory& traj, const fs::path& file, std::size_t l
                                          formatStampSeconds(traj[traj.size() - 2].stamp), " s)"));
 }
 
+void checkPosition(const StampedPose& p, const fs::path& file, std::size_t line) {
+  if (std::abs(p.pose.x) > kMaxCoordinateM || std::abs(p.pose.y) > kMaxCoordinateM)
+    throw InputError(at(file, line),
+                     cat("position (", std::to_string(p.pose.x), ", ", std::to_string(p.pose.y),
+                         ") is farther than 1e7 m from the origin"));
+}
+
 /// Remembers the largest tilt of the poses' z axis from vertical (up or down) for one warning.
 struct TiltCheck {
   double worst_deg = 0.0;
@@ -210,6 +217,7 @@ Trajectory readTumTrajectory(const fs::path& file) {
     const double r10 = 2.0 * (qx * qy + qw * qz) / (norm * norm);
     tilt.add(1.0 - 2.0 * (qx * qx + qy * qy) / (norm * norm), line.number);
     p.pose = mrpt::math::TPose2D(x, y, std::atan2(r10, r00));
+    checkPosition(p, file, line.number);
     traj.push_back(p);
     checkIncreasing(traj, file, line.number);
   }
@@ -289,6 +297,7 @@ Trajectory readKittiTrajectory(const fs::path& file, const std::vector<StampNs>&
     } else
       p.stamp = static_cast<StampNs>(index) * kNsPerSec;  // no stamps: the index, in seconds
     p.pose = mrpt::math::TPose2D(m[3], m[7], std::atan2(m[4], m[0]));
+    checkPosition(p, file, line.number);
     traj.push_back(p);
     checkIncreasing(traj, file, line.number);
   }

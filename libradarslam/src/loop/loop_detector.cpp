@@ -13,15 +13,11 @@
 namespace radarslam {
 
 void loadParams(const YamlParams& yaml, LoopDetectorParams& params) {
-  yaml.get("max_descriptor_distance", params.max_descriptor_distance);
+  yaml.get("max_descriptor_distance", params.max_descriptor_distance, Range::above(0, 100));
   int k = static_cast<int>(params.max_candidates), recent = static_cast<int>(params.exclude_recent);
-  yaml.get("max_candidates", k);
-  yaml.get("exclude_recent", recent);
-  yaml.get("exclude_recent_distance_m", params.exclude_recent_distance_m);
-  if (k < 1 || recent < 0 || !(params.max_descriptor_distance > 0))
-    throw InputError(yaml.origin(),
-                     "loop detector: max_candidates must be >= 1, exclude_recent >= 0, "
-                     "max_descriptor_distance > 0");
+  yaml.get("max_candidates", k, Range::closed(1, 1000));
+  yaml.get("exclude_recent", recent, Range::closed(0, 1000000.0));
+  yaml.get("exclude_recent_distance_m", params.exclude_recent_distance_m, Range::closed(0, 1000000.0));
   params.max_candidates = static_cast<std::size_t>(k);
   params.exclude_recent = static_cast<std::size_t>(recent);
 }

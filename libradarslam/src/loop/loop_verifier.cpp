@@ -21,34 +21,25 @@
 namespace radarslam {
 
 void loadParams(const YamlParams& yaml, LoopVerifierParams& p) {
-  auto getSize = [&](const char* key, std::size_t& v) {
-    int i = static_cast<int>(v);
-    yaml.get(key, i);
-    if (i < 0)
-      throw InputError(yaml.origin(), std::string("loop verifier: ").append(key).append(" must be >= 0"));
-    v = static_cast<std::size_t>(i);
-  };
-  yaml.get("voxel_m", p.voxel_m);
-  getSize("max_search_points", p.max_search_points);
-  yaml.get("rotation_steps", p.rotation_steps);
-  yaml.get("max_translation_m", p.max_translation_m);
-  yaml.get("vote_cell_m", p.vote_cell_m);
-  yaml.get("hypotheses", p.hypotheses);
-  yaml.get("suppression_distance_m", p.suppression_distance_m);
-  yaml.get("suppression_angle_deg", p.suppression_angle_deg);
-  yaml.get("inlier_distance_m", p.inlier_distance_m);
-  yaml.get("max_ambiguity_ratio", p.max_ambiguity_ratio);
-  getSize("min_inliers", p.min_inliers);
-  yaml.get("min_inlier_ratio", p.min_inlier_ratio);
-  yaml.get("max_rms_m", p.max_rms_m);
-  yaml.get("min_inlier_sectors", p.min_inlier_sectors);
-  yaml.get("min_sigma_m", p.min_sigma_m);
-  yaml.get("information_scale", p.information_scale);
-  if (p.rotation_steps < 4 || p.hypotheses < 1 || !(p.vote_cell_m > 0) || !(p.max_translation_m > 0) ||
-      !(p.inlier_distance_m > 0) || !(p.voxel_m >= 0) || p.max_search_points < 3)
-    throw InputError(yaml.origin(),
-                     "loop verifier: invalid parameter (rotation_steps >= 4, hypotheses >= 1, "
-                     "positive distances, max_search_points >= 3)");
+  yaml.get("voxel_m", p.voxel_m, Range::closed(0, 100));
+  yaml.get("max_search_points", p.max_search_points, Range::closed(3, 100000));
+  yaml.get("rotation_steps", p.rotation_steps, Range::closed(4, 3600));
+  yaml.get("max_translation_m", p.max_translation_m, Range::above(0, 1000));
+  yaml.get("vote_cell_m", p.vote_cell_m, Range::closed(0.01, 100));
+  yaml.get("hypotheses", p.hypotheses, Range::closed(1, 1000));
+  yaml.get("suppression_distance_m", p.suppression_distance_m, Range::closed(0, 1000));
+  yaml.get("suppression_angle_deg", p.suppression_angle_deg, Range::closed(0, 180));
+  yaml.get("inlier_distance_m", p.inlier_distance_m, Range::above(0, 100));
+  yaml.get("max_ambiguity_ratio", p.max_ambiguity_ratio, Range::closed(0, 10));
+  yaml.get("min_inliers", p.min_inliers, Range::closed(0, 1e6));
+  yaml.get("min_inlier_ratio", p.min_inlier_ratio, Range::closed(0, 1));
+  yaml.get("max_rms_m", p.max_rms_m, Range::above(0, 100));
+  yaml.get("min_inlier_sectors", p.min_inlier_sectors, Range::closed(0, 8));
+  yaml.get("min_sigma_m", p.min_sigma_m, Range::closed(0, 100));
+  yaml.get("information_scale", p.information_scale, Range::above(0, 1000000.0));
+  // The Hough vote grid has (2 max_translation_m / vote_cell_m)^2 cells.
+  if (p.max_translation_m / p.vote_cell_m > 2000)
+    yaml.fail("vote_cell_m", "max_translation_m / vote_cell_m must be <= 2000 (vote grid size)");
 }
 
 namespace {

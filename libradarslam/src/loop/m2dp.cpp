@@ -13,19 +13,14 @@
 namespace radarslam {
 
 void loadParams(const YamlParams& yaml, M2DPParams& params) {
-  yaml.get("azimuths", params.azimuths);
-  yaml.get("elevations", params.elevations);
-  yaml.get("rings", params.rings);
-  yaml.get("sectors", params.sectors);
-  yaml.get("power_height_m", params.power_height_m);
-  yaml.get("radius_quantile", params.radius_quantile);
+  yaml.get("azimuths", params.azimuths, Range::closed(1, 64));
+  yaml.get("elevations", params.elevations, Range::closed(1, 64));
+  yaml.get("rings", params.rings, Range::closed(1, 64));
+  yaml.get("sectors", params.sectors, Range::closed(1, 64));
+  yaml.get("power_height_m", params.power_height_m, Range::closed(0, 1000));
+  yaml.get("radius_quantile", params.radius_quantile, Range::above(0, 1));
   int min_points = static_cast<int>(params.min_points);
-  yaml.get("min_points", min_points);
-  if (params.azimuths < 1 || params.elevations < 1 || params.rings < 1 || params.sectors < 1 ||
-      min_points < 3 || !(params.radius_quantile > 0.0 && params.radius_quantile <= 1.0))
-    throw InputError(yaml.origin(),
-                     "m2dp: azimuths/elevations/rings/sectors must be >= 1, min_points >= 3, "
-                     "radius_quantile in (0, 1]");
+  yaml.get("min_points", min_points, Range::closed(3, 100000));
   params.min_points = static_cast<std::size_t>(min_points);
 }
 

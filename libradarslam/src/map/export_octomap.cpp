@@ -4,6 +4,7 @@
 // the stream API into memory. Both are written atomically, nothing is printed to our stdout.
 #include <octomap/OcTree.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -30,12 +31,49 @@ std::vector<fs::path> writeGridColumns(const KeyframeMap& map, const fs::path& d
   return {bt, ot};
 }
 
+struct Box {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  void grow(double x, double y) {
+    x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+  }
+  double cells(double res) const {
+    return x1 < x0 ? 0.0 : (std::floor((x1 - x0) / res) + 1) * (std::floor((y1 - y0) / res) + 1);
+  }
+};
+
+/// Refuses resolutions whose tree would not fit: the voxels the rays touch are at most the
+/// smaller of the whole map's box and the sum of the keyframes' boxes, in voxels.
+void checkTreeSize(const KeyframeMap& map, const OctomapExportParams& params) {
+  const double res = params.resolution_m;
+  Box all;
+  double sum = 0.0;
+  for (const auto& kf : map.keyframes) {
+    Box b;
+    b.grow(kf.pose.x, kf.pose.y);
+    const double c = std::cos(kf.pose.phi), s = std::sin(kf.pose.phi);
+    for (const auto& p : kf.points) b.grow(kf.pose.x + c * p.x - s * p.y, kf.pose.y + s * p.x + c * p.y);
+    sum += b.cells(res);
+    all.grow(b.x0, b.y0), all.grow(b.x1, b.y1);
+  }
+  const double reach = std::max({std::abs(all.x0), std::abs(all.x1), std::abs(all.y0), std::abs(all.y1)});
+  if (!map.keyframes.empty() && reach / res >= 32767)
+    throw InputError("octomap export", "points " + std::to_string(static_cast<long long>(reach)) +
+                                           " m from the origin need more than 32767 voxels of " +
+                                           std::to_string(res) + " m; use a coarser --resolution");
+  const double voxels = std::min(sum, all.cells(res));
+  if (voxels > static_cast<double>(params.max_voxels))
+    throw InputError("octomap export", "an OctoMap of about " +
+                                           std::to_string(static_cast<long long>(voxels)) +
+                                           " voxels (limit " + std::to_string(params.max_voxels) +
+                                           ") is too large; use a coarser --resolution");
+}
 }  // namespace
 
 std::vector<fs::path> exportOctomap(const KeyframeMap& map, const fs::path& dir, const std::string& stem,
                                     const OctomapExportParams& params) {
   if (!(params.resolution_m > 0)) throw InputError("octomap export", "resolution must be > 0");
   if (params.fill == OctomapExportParams::Fill::grid_columns) return writeGridColumns(map, dir, stem, params);
+  checkTreeSize(map, params);
   octomap::OcTree tree(params.resolution_m);
   // Ray tracing is slow (about 0.14 s per 1500-point keyframe): report progress with rate and ETA.
   const auto t0 = std::chrono::steady_clock::now();

@@ -9,8 +9,8 @@
 namespace radarslam {
 
 void loadParams(const YamlParams& yaml, KeyframeInsertionParams& params) {
-  yaml.get("keyframe_distance_m", params.keyframe_distance_m);
-  yaml.get("keyframe_angle_rad", params.keyframe_angle_rad);
+  yaml.get("keyframe_distance_m", params.keyframe_distance_m, Range::closed(0, 10000.0));
+  yaml.get("keyframe_angle_rad", params.keyframe_angle_rad, Range::closed(0, 6.2832));
 }
 
 bool needsKeyframe(const KeyframeMap& map, const mrpt::math::TPose2D& pose,

@@ -49,9 +49,9 @@ struct PolarToCartesian::Tables {
 };
 
 void loadParams(const YamlParams& yaml, CartesianParams& params) {
-  yaml.get("size_px", params.size_px);
-  yaml.get("m_per_px", params.m_per_px);
-  yaml.get("height_px", params.height_px);
+  yaml.get("size_px", params.size_px, Range::closed(16, 4096));
+  yaml.get("m_per_px", params.m_per_px, Range::closed(0.01, 10));
+  yaml.get("height_px", params.height_px, Range::closed(0, 4096));
   yaml.get("fixed_point_maps", params.fixed_point_maps);
 }
 

@@ -10,11 +10,13 @@
 namespace radarslam {
 
 void loadParams(const YamlParams& yaml, PeakCloudParams& params) {
-  yaml.get("min_peak_prominence", params.min_peak_prominence);
-  yaml.get("min_peak_distance_bins", params.min_peak_distance_bins);
-  yaml.get("min_range_m", params.min_range_m);
-  yaml.get("max_range_m", params.max_range_m);
-  yaml.get("smoothing_bins", params.smoothing_bins);
+  yaml.get("min_peak_prominence", params.min_peak_prominence, Range::closed(0, 255));
+  yaml.get("min_peak_distance_bins", params.min_peak_distance_bins, Range::closed(1, 10000));
+  yaml.get("min_range_m", params.min_range_m, Range::closed(0, 1000));
+  yaml.get("max_range_m", params.max_range_m, Range::closed(0, 10000));
+  yaml.get("smoothing_bins", params.smoothing_bins, Range::closed(0, 1000));
+  if (params.max_range_m > 0 && params.max_range_m <= params.min_range_m)
+    yaml.fail("max_range_m", "must be 0 (full range) or > min_range_m");
 }
 
 // Smoothing (PeakCloudParams::smoothing_bins) is off by default. Measured on the 11 Oxford tiny

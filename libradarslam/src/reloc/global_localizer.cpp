@@ -16,14 +16,10 @@ namespace radarslam {
 
 void loadParams(const YamlParams& yaml, GlobalLocalizerParams& p) {
   int k = static_cast<int>(p.candidates), fb = static_cast<int>(p.fallback_candidates);
-  yaml.get("candidates", k);
-  yaml.get("fallback_candidates", fb);
-  yaml.get("max_descriptor_distance", p.max_descriptor_distance);
+  yaml.get("candidates", k, Range::closed(1, 1000));
+  yaml.get("fallback_candidates", fb, Range::closed(0, 1000));
+  yaml.get("max_descriptor_distance", p.max_descriptor_distance, Range::above(0, 100));
   yaml.get("recompute_descriptors", p.recompute_descriptors);
-  if (k < 1 || fb < 0 || !(p.max_descriptor_distance > 0))
-    throw InputError(yaml.origin(),
-                     "localization global: candidates must be >= 1, fallback_candidates >= 0, "
-                     "max_descriptor_distance > 0");
   p.candidates = static_cast<std::size_t>(k);
   p.fallback_candidates = static_cast<std::size_t>(fb);
   loadParams(yaml.section("m2dp"), p.m2dp);

@@ -19,17 +19,12 @@ namespace radarslam {
 
 void loadParams(const YamlParams& yaml, LocalizerParams& p) {
   yaml.get("motion_compensation", p.motion_compensation);
-  yaml.get("max_missed_scans", p.max_missed_scans);
-  yaml.get("global_retry_interval", p.global_retry_interval);
-  yaml.get("map_sweep_period_s", p.map_sweep_period_s);
-  yaml.get("confirm_fixes", p.confirm_fixes);
-  yaml.get("confirm_distance_m", p.confirm_distance_m);
-  yaml.get("confirm_angle_deg", p.confirm_angle_deg);
-  if (p.max_missed_scans < 0 || p.global_retry_interval < 1 || !(p.map_sweep_period_s >= 0) ||
-      p.confirm_fixes < 1 || !(p.confirm_distance_m > 0) || !(p.confirm_angle_deg > 0))
-    throw InputError(yaml.origin(),
-                     "localization: max_missed_scans must be >= 0, global_retry_interval >= 1, "
-                     "map_sweep_period_s >= 0, confirm_fixes >= 1, confirm distances > 0");
+  yaml.get("max_missed_scans", p.max_missed_scans, Range::closed(0, 1000000.0));
+  yaml.get("global_retry_interval", p.global_retry_interval, Range::closed(1, 1000000.0));
+  yaml.get("map_sweep_period_s", p.map_sweep_period_s, Range::closed(0, 1000000.0));
+  yaml.get("confirm_fixes", p.confirm_fixes, Range::closed(1, 100));
+  yaml.get("confirm_distance_m", p.confirm_distance_m, Range::above(0, 1000));
+  yaml.get("confirm_angle_deg", p.confirm_angle_deg, Range::above(0, 180));
   loadParams(yaml.section("peak_cloud"), p.peaks);
   loadParams(yaml.section("global"), p.global);
   loadParams(yaml.section("tracker"), p.tracker);

@@ -12,16 +12,12 @@ namespace radarslam {
 
 void loadParams(const YamlParams& yaml, MapTrackerParams& p) {
   int min_inliers = static_cast<int>(p.min_inliers);
-  yaml.get("min_fit_score", p.min_fit_score);
-  yaml.get("min_inliers", min_inliers);
-  yaml.get("max_rms_m", p.max_rms_m);
-  yaml.get("max_jump_m", p.max_jump_m);
-  yaml.get("max_jump_deg", p.max_jump_deg);
-  yaml.get("max_position_sigma_m", p.max_position_sigma_m);
-  if (min_inliers < 3 || !(p.min_fit_score >= 0 && p.min_fit_score <= 1) || !(p.max_rms_m > 0) ||
-      !(p.max_jump_m > 0) || !(p.max_jump_deg > 0) || !(p.max_position_sigma_m > 0))
-    throw InputError(yaml.origin(),
-                     "localization tracker: min_inliers >= 3, min_fit_score in [0, 1], positive limits");
+  yaml.get("min_fit_score", p.min_fit_score, Range::closed(0, 1));
+  yaml.get("min_inliers", min_inliers, Range::closed(3, 1000000.0));
+  yaml.get("max_rms_m", p.max_rms_m, Range::above(0, 100));
+  yaml.get("max_jump_m", p.max_jump_m, Range::above(0, 1000));
+  yaml.get("max_jump_deg", p.max_jump_deg, Range::above(0, 180));
+  yaml.get("max_position_sigma_m", p.max_position_sigma_m, Range::above(0, 1000));
   p.min_inliers = static_cast<std::size_t>(min_inliers);
   loadParams(yaml.section("submap"), p.submap);
   loadParams(yaml.section("icp"), p.icp);

@@ -14,34 +14,28 @@
 namespace radarslam {
 
 void loadParams(const YamlParams& yaml, SubmapParams& p) {
-  yaml.get("radius_m", p.radius_m);
-  yaml.get("voxel_m", p.voxel_m);
-  yaml.get("max_point_range_m", p.max_point_range_m);
-  yaml.get("rebuild_distance_m", p.rebuild_distance_m);
-  if (!(p.radius_m > 0) || !(p.voxel_m > 0) || !(p.max_point_range_m >= 0) || !(p.rebuild_distance_m >= 0))
-    throw InputError(yaml.origin(), "localization submap: radius_m and voxel_m must be > 0, the others >= 0");
+  yaml.get("radius_m", p.radius_m, Range::above(0, 10000.0));
+  yaml.get("voxel_m", p.voxel_m, Range::closed(0.01, 100));
+  yaml.get("max_point_range_m", p.max_point_range_m, Range::closed(0, 10000.0));
+  yaml.get("rebuild_distance_m", p.rebuild_distance_m, Range::closed(0, 10000.0));
 }
 
 void loadParams(const YamlParams& yaml, IcpParams& p) {
-  yaml.get("max_iterations", p.max_iterations);
-  yaml.get("max_correspondence_m", p.max_correspondence_m);
-  yaml.get("inlier_distance_m", p.inlier_distance_m);
-  yaml.get("cauchy_m", p.cauchy_m);
-  yaml.get("normal_radius_m", p.normal_radius_m);
-  yaml.get("max_planarity", p.max_planarity);
-  yaml.get("convergence_m", p.convergence_m);
-  yaml.get("convergence_rad", p.convergence_rad);
-  yaml.get("scan_voxel_m", p.scan_voxel_m);
+  yaml.get("max_iterations", p.max_iterations, Range::closed(1, 1000));
+  yaml.get("max_correspondence_m", p.max_correspondence_m, Range::above(0, 1000));
+  yaml.get("inlier_distance_m", p.inlier_distance_m, Range::above(0, 1000));
+  yaml.get("cauchy_m", p.cauchy_m, Range::above(0, 100));
+  yaml.get("normal_radius_m", p.normal_radius_m, Range::above(0, 100));
+  yaml.get("max_planarity", p.max_planarity, Range::closed(0, 1));
+  yaml.get("convergence_m", p.convergence_m, Range::closed(0, 10));
+  yaml.get("convergence_rad", p.convergence_rad, Range::closed(0, 1));
+  yaml.get("scan_voxel_m", p.scan_voxel_m, Range::closed(0, 100));
   int max_points = static_cast<int>(p.max_scan_points);
-  yaml.get("max_scan_points", max_points);
-  yaml.get("min_sigma_m", p.min_sigma_m);
-  yaml.get("covariance_scale", p.covariance_scale);
-  if (p.max_iterations < 1 || !(p.inlier_distance_m > 0) ||
-      !(p.max_correspondence_m >= p.inlier_distance_m) || !(p.cauchy_m > 0) || !(p.normal_radius_m > 0) ||
-      max_points < 10 || !(p.scan_voxel_m >= 0) || !(p.covariance_scale > 0))
-    throw InputError(yaml.origin(),
-                     "localization icp: max_iterations >= 1, 0 < inlier_distance_m <= max_correspondence_m, "
-                     "positive cauchy_m, normal_radius_m, covariance_scale, max_scan_points >= 10");
+  yaml.get("max_scan_points", max_points, Range::closed(10, 1000000.0));
+  yaml.get("min_sigma_m", p.min_sigma_m, Range::closed(0, 100));
+  yaml.get("covariance_scale", p.covariance_scale, Range::above(0, 1000000.0));
+  if (p.max_correspondence_m < p.inlier_distance_m)
+    yaml.fail("max_correspondence_m", "must be >= inlier_distance_m");
   p.max_scan_points = static_cast<std::size_t>(max_points);
 }
 

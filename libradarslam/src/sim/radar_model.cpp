@@ -50,40 +50,40 @@ Weather weatherPreset(const std::string& name) {
 }
 
 void loadGeometry(const YamlParams& y, RadarGeometry& g) {
-  y.get("azimuths", g.azimuths);
-  y.get("bins", g.bins);
-  y.get("range_resolution_m", g.range_resolution_m);
-  y.get("rotation_hz", g.rotation_hz);
-  y.get("encoder_size", g.encoder_size);
+  y.get("azimuths", g.azimuths, Range::closed(16, 4096));
+  y.get("bins", g.bins, Range::closed(16, 16384));
+  y.get("range_resolution_m", g.range_resolution_m, Range::closed(0.001, 10));
+  y.get("rotation_hz", g.rotation_hz, Range::closed(0.1, 100));
+  y.get("encoder_size", g.encoder_size, Range::closed(16, 1000000.0));
 }
 
 void loadPhysics(const YamlParams& y, RadarPhysics& p) {
-  y.get("beam_width_deg", p.beam_width_deg);
-  y.get("rays_per_azimuth", p.rays_per_azimuth);
-  y.get("sidelobe_db", p.sidelobe_db);
-  y.get("sidelobe_extent_deg", p.sidelobe_extent_deg);
-  y.get("power_scale", p.power_scale);
-  y.get("range_exponent", p.range_exponent);
-  y.get("specular_exponent", p.specular_exponent);
-  y.get("range_psf_bins", p.range_psf_bins);
-  y.get("speckle_range_corr", p.speckle_range_corr);
-  y.get("speckle_azimuth_corr", p.speckle_azimuth_corr);
-  y.get("noise_floor_power", p.noise_floor_power);
-  y.get("near_noise_power", p.near_noise_power);
-  y.get("near_noise_range_m", p.near_noise_range_m);
-  y.get("azimuth_gain_jitter_db", p.azimuth_gain_jitter_db);
-  y.get("near_clutter_power", p.near_clutter_power);
-  y.get("near_clutter_range_m", p.near_clutter_range_m);
-  y.get("saturation_amplitude", p.saturation_amplitude);
-  y.get("streak_threshold_power", p.streak_threshold_power);
-  y.get("streak_power", p.streak_power);
-  y.get("streak_probability", p.streak_probability);
-  y.get("multipath_db", p.multipath_db);
-  y.get("multipath_min_cos", p.multipath_min_cos);
-  y.get("ground_clutter_power", p.ground_clutter_power);
-  y.get("ground_clutter_exponent", p.ground_clutter_exponent);
-  y.get("ground_texture_m", p.ground_texture_m);
-  y.get("code_per_octave", p.code_per_octave);
+  y.get("beam_width_deg", p.beam_width_deg, Range::above(0, 90));
+  y.get("rays_per_azimuth", p.rays_per_azimuth, Range::closed(1, 64));
+  y.get("sidelobe_db", p.sidelobe_db, Range::closed(-200, 0));
+  y.get("sidelobe_extent_deg", p.sidelobe_extent_deg, Range::closed(0, 180));
+  y.get("power_scale", p.power_scale, Range::above(0, 1e+20));
+  y.get("range_exponent", p.range_exponent, Range::closed(0, 10));
+  y.get("specular_exponent", p.specular_exponent, Range::closed(0, 1000));
+  y.get("range_psf_bins", p.range_psf_bins, Range::closed(0, 100));
+  y.get("speckle_range_corr", p.speckle_range_corr, Range::closed(0, 0.999));
+  y.get("speckle_azimuth_corr", p.speckle_azimuth_corr, Range::closed(0, 0.999));
+  y.get("noise_floor_power", p.noise_floor_power, Range::closed(0, 1000000000000.0));
+  y.get("near_noise_power", p.near_noise_power, Range::closed(0, 1000000000000.0));
+  y.get("near_noise_range_m", p.near_noise_range_m, Range::above(0, 10000.0));
+  y.get("azimuth_gain_jitter_db", p.azimuth_gain_jitter_db, Range::closed(0, 60));
+  y.get("near_clutter_power", p.near_clutter_power, Range::closed(0, 1e+20));
+  y.get("near_clutter_range_m", p.near_clutter_range_m, Range::closed(0, 1000));
+  y.get("saturation_amplitude", p.saturation_amplitude, Range::above(0, 1e+20));
+  y.get("streak_threshold_power", p.streak_threshold_power, Range::above(0, 1e+30));
+  y.get("streak_power", p.streak_power, Range::closed(0, 1e+20));
+  y.get("streak_probability", p.streak_probability, Range::closed(0, 1));
+  y.get("multipath_db", p.multipath_db, Range::closed(-200, 0));
+  y.get("multipath_min_cos", p.multipath_min_cos, Range::closed(0, 1));
+  y.get("ground_clutter_power", p.ground_clutter_power, Range::closed(0, 1e+20));
+  y.get("ground_clutter_exponent", p.ground_clutter_exponent, Range::closed(0, 10));
+  y.get("ground_texture_m", p.ground_texture_m, Range::above(0, 1000));
+  y.get("code_per_octave", p.code_per_octave, Range::above(0, 100));
 }
 
 namespace {

@@ -22,9 +22,9 @@ namespace radarslam {
 class YamlParams;
 
 struct PoseGraphParams {
-  int max_iterations = 100;
-  double loop_chi2_gate = 16.27;  ///< chi^2 (3 DOF) 99.9 % quantile
-  int max_loop_rejections = 10;
+  int max_iterations = 100;       ///< valid [1, 10000]
+  double loop_chi2_gate = 16.27;  ///< chi^2 (3 DOF) 99.9 % quantile; valid (0, 1000000]
+  int max_loop_rejections = 10;   ///< valid [0, 10000]
 };
 
 /// Overrides `params` from max_iterations, loop_chi2_gate, max_loop_rejections.

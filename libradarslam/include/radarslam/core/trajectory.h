@@ -4,6 +4,7 @@
 #include <mrpt/math/TPose2D.h>
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "radarslam/core/time.h"
@@ -25,6 +26,16 @@ std::optional<mrpt::math::TPose2D> interpolatePose(const Trajectory& traj, Stamp
 
 /// Sum of the distances between consecutive positions, metres.
 double pathLength(const Trajectory& traj);
+
+/// Largest |x| or |y| a pose may have, in metres: 10 000 km covers every planar frame in use
+/// (UTM northings included). Farther coordinates are corrupt data, refused by the trajectory
+/// readers and the evaluation before any path length, grid or plot is computed from them.
+inline constexpr double kMaxCoordinateM = 1e7;
+
+/// Index of the first pose that is not finite or farther than kMaxCoordinateM, or nullopt.
+std::optional<std::size_t> firstImplausiblePose(const Trajectory& traj);
+/// Throws InputError(where, "pose N ...") if firstImplausiblePose() finds one.
+void checkPlausiblePoses(const Trajectory& traj, const std::string& where);
 
 /// Index of the first sample whose stamp does not increase, or nullopt if strictly increasing.
 std::optional<std::size_t> firstNonIncreasingStamp(const Trajectory& traj);

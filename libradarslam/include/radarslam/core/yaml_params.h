@@ -3,12 +3,30 @@
 // reads one section of a YAML file, type-checks each value and remembers which keys were used,
 // so that a typo in a config ("keyframe_distnace") is an error naming the file and the key
 // instead of a silently ignored setting.
+#include <cstddef>
 #include <memory>
 #include <set>
 #include <string>
 #include <vector>
 
 namespace radarslam {
+
+/// The valid values of a numeric parameter: [lo, hi], with either end optionally open. NaN is
+/// never in range. Every range-checked get() states one next to its key, so that the accepted
+/// values are documented where the parameter is read (and listed in docs/parameters.md).
+struct Range {
+  double lo = 0.0;
+  double hi = 0.0;
+  bool lo_open = false;
+  bool hi_open = false;
+
+  static Range closed(double lo, double hi) { return {lo, hi, false, false}; }
+  /// (lo, hi]: e.g. Range::above(0, 100) for "positive, at most 100".
+  static Range above(double lo, double hi) { return {lo, hi, true, false}; }
+  bool contains(double v) const;
+  /// "[lo, hi]", "(lo, hi]", ...
+  std::string text() const;
+};
 
 class YamlParams {
  public:
@@ -34,6 +52,23 @@ class YamlParams {
   void get(const std::string& key, bool& value) const;
   void get(const std::string& key, std::string& value) const;
   void get(const std::string& key, std::vector<double>& value) const;
+
+  /// As above, and throws InputError naming the file and the key if the value read is outside
+  /// `range`. Absent keys keep the default (which the caller's range must contain).
+  void get(const std::string& key, double& value, const Range& range) const;
+  void get(const std::string& key, float& value, const Range& range) const;
+  void get(const std::string& key, int& value, const Range& range) const;
+  void get(const std::string& key, unsigned& value, const Range& range) const;
+  void get(const std::string& key, long& value, const Range& range) const;
+  void get(const std::string& key, std::size_t& value, const Range& range) const;
+  /// A list of at most `max_items` numbers, each in `range`.
+  void get(const std::string& key, std::vector<double>& value, const Range& range,
+           std::size_t max_items) const;
+
+  /// Throws InputError(origin, "key '<section.key>': <problem>") (for cross-field checks).
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
+  /// fail()s unless `value` (of `key`, whether read or default) lies in `range`.
+  void check(const std::string& key, double value, const Range& range) const;
 
   /// Throws InputError naming the first key of this file that no get()/section() consumed.
   void rejectUnknownKeys() const;

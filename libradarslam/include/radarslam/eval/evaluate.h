@@ -15,7 +15,7 @@ namespace radarslam::eval {
 struct EvalParams {
   KittiParams kitti;
   /// Estimates between two ground-truth poses further apart than this are dropped (seconds).
-  double max_gt_gap_s = 2.0;
+  double max_gt_gap_s = 2.0;  ///< valid (0, 1000000]
 };
 
 /// Overrides from a YAML section: kitti_lengths_m (list), kitti_step_frames, max_gt_gap_s.

@@ -14,11 +14,11 @@
 namespace radarslam::eval {
 
 struct KittiParams {
-  std::vector<double> lengths_m{100, 200, 300, 400, 500, 600, 700, 800};
+  std::vector<double> lengths_m{100, 200, 300, 400, 500, 600, 700, 800};  ///< valid (0, 1e5]
   /// Start a segment every `step_frames` frames. The devkit uses 10 at KITTI's 10 Hz (one start per
   /// second); spinning radars turn at 4 Hz, so 4 keeps one start per second (as pyboreas' radar
   /// benchmark does).
-  unsigned step_frames = 4;
+  unsigned step_frames = 4;  ///< valid [1, 1000000]
 };
 
 struct KittiSegment {

@@ -7,10 +7,10 @@
 namespace radarslam {
 
 struct KeyframeParams {
-  double max_translation_m =
-      1.0;  ///< authors: 2 m; 1 m keeps frame-to-frame tracking at road speeds (docs/odometry.md)
-  double max_rotation_rad = 0.2;  ///< authors: 0.2 rad
-  int min_inliers = 60;           ///< fewer inliers with the keyframe than this -> new keyframe
+  double max_translation_m = 1.0;  ///< authors: 2 m; 1 m keeps frame-to-frame tracking at road speeds
+                                   ///< (docs/odometry.md); valid (0, 1000]
+  double max_rotation_rad = 0.2;   ///< authors: 0.2 rad; valid (0, 6.2832]
+  int min_inliers = 60;  ///< fewer inliers with the keyframe than this -> new keyframe; valid [0, 100000]
 };
 
 /// `motion` = T_keyframe_current; `inliers` = consistent matches with the keyframe.

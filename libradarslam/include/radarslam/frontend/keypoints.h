@@ -13,12 +13,13 @@ namespace radarslam {
 
 struct KeypointParams {
   std::string detector = "orb";  ///< orb | akaze | brisk | fast_orb
-  int max_keypoints = 1000;      ///< strongest kept (orb, fast_orb)
-  int fast_threshold = 12;       ///< FAST threshold (orb, fast_orb, brisk)
-  int pyramid_levels = 1;        ///< ORB pyramid levels (radar images have no scale change)
-  int patch_size = 31;           ///< ORB descriptor patch (px)
-  double blur_sigma_px = 0.0;    ///< Gaussian pre-smoothing of the image before detection (0 = off)
-  bool subpixel = true;          ///< refine locations to sub-pixel on the smoothed image
+  int max_keypoints = 1000;      ///< strongest kept (orb, fast_orb); valid [10, 100000]
+  int fast_threshold = 12;       ///< FAST threshold (orb, fast_orb, brisk); valid [1, 255]
+  int pyramid_levels = 1;        ///< ORB pyramid levels (radar images have no scale change); valid [1, 16]
+  int patch_size = 31;           ///< ORB descriptor patch (px); valid [5, 127]
+  double blur_sigma_px =
+      0.0;               ///< Gaussian pre-smoothing of the image before detection (0 = off); valid [0, 20]
+  bool subpixel = true;  ///< refine locations to sub-pixel on the smoothed image
 };
 
 struct ImageKeypoints {

@@ -16,22 +16,26 @@ class YamlParams;
 
 struct OutlierParams {
   bool max_clique = true;                ///< eq. (3) graph + maximum clique; false = all matches (ablation)
-  double delta_c_m = 0.75;               ///< eq. (3) threshold (authors: 3 px at 0.25 m/px)
+  double delta_c_m = 0.75;               ///< eq. (3) threshold (authors: 3 px at 0.25 m/px); valid (0, 100]
   std::string consistency = "distance";  ///< distance (rigid invariant) | displacement (eq. (3) as printed)
-  int max_matches = 500;                 ///< best-descriptor matches fed to the graph
-  long max_clique_steps = 20000;         ///< branch-and-bound budget
-  double inlier_gate_m = 1.0;            ///< after the SVD pose, matches within this are inliers for eq. (4)
+  int max_matches = 500;                 ///< best-descriptor matches fed to the graph; valid [3, 5000]
+  long max_clique_steps = 20000;         ///< branch-and-bound budget; valid [1, 1e8]
+  double inlier_gate_m =
+      1.0;  ///< after the SVD pose, matches within this are inliers for eq. (4); valid (0, 100]
 };
 
 struct TrackingParams {
-  int min_inliers = 10;             ///< fewer -> tracking lost for this scan
-  double min_range_m = 3.0;         ///< keypoints closer than this are ignored (sensor/vehicle clutter)
-  double max_speed_mps = 40.0;      ///< estimates implying more are rejected as failures
-  int keep_keyframe_when_lost = 2;  ///< consecutive lost scans with too few keypoints that keep the keyframe
+  int min_inliers = 10;  ///< fewer -> tracking lost for this scan; valid [3, 100000]
+  double min_range_m =
+      3.0;  ///< keypoints closer than this are ignored (sensor/vehicle clutter); valid [0, 1000]
+  double max_speed_mps = 40.0;  ///< estimates implying more are rejected as failures; valid (0, 1000]
+  int keep_keyframe_when_lost =
+      2;  ///< consecutive lost scans with too few keypoints that keep the keyframe; valid [0, 1000]
   bool motion_compensation = true;
-  bool acceleration_aware = true;     ///< per-scan velocity from neighbouring pairs, not the pair's mean
-  int compensation_passes = 2;        ///< re-compensate with the refined velocity and refine again
-  double max_prediction_gap_s = 1.0;  ///< longer intervals (data gaps) re-initialise, no constant velocity
+  bool acceleration_aware = true;  ///< per-scan velocity from neighbouring pairs, not the pair's mean
+  int compensation_passes = 2;  ///< re-compensate with the refined velocity and refine again; valid [0, 10]
+  double max_prediction_gap_s =
+      1.0;  ///< longer intervals (data gaps) re-initialise, no constant velocity; valid (0, 3600]
 };
 
 struct OdometryParams {

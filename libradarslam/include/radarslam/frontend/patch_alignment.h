@@ -11,15 +11,16 @@ namespace radarslam {
 
 struct PatchAlignParams {
   bool enabled = true;
-  int patch_radius_px = 6;   ///< patch is (2r+1)^2
-  int search_radius_px = 2;  ///< integer offsets searched around the initial position
-  int lk_iterations = 3;
-  double min_ncc = 0.6;  ///< below this the pair is left unrefined and flagged
-  double blur_sigma_px = 1.5;
+  int patch_radius_px = 6;     ///< patch is (2r+1)^2; valid [1, 32]
+  int search_radius_px = 2;    ///< integer offsets searched around the initial position; valid [0, 32]
+  int lk_iterations = 3;       ///< valid [0, 100]
+  double min_ncc = 0.6;        ///< below this the pair is left unrefined and flagged; valid [-1, 1]
+  double blur_sigma_px = 1.5;  ///< valid [0, 20]
   /// After the first pose, also track every other keyframe keypoint into the current image.
   bool track_keyframe_points = true;
-  int track_search_radius_px = 1;
-  double track_gate_m = 0.5;  ///< tracked points farther than this from the estimate are dropped
+  int track_search_radius_px = 1;  ///< valid [0, 32]
+  double track_gate_m =
+      0.5;  ///< tracked points farther than this from the estimate are dropped; valid (0, 100]
 };
 
 /// Image prepared for alignment (smoothed, float).

@@ -10,13 +10,13 @@
 namespace radarslam {
 
 struct RefineParams {
-  int iterations = 10;
-  double huber_m = 0.5;  ///< residuals beyond this are down-weighted (metres)
+  int iterations = 10;   ///< valid [0, 1000]
+  double huber_m = 0.5;  ///< residuals beyond this are down-weighted (metres); valid (0, 100]
   /// Anisotropic point noise (0 = isotropic): a radar return is precise in range and blurred
   /// along the beam's arc, sigma_t = range * azimuth_sigma_rad. Residuals are then weighted by
   /// the inverse of diag(range_sigma_m^2, sigma_t^2) in the beam's frame (at the ref point).
-  double azimuth_sigma_rad = 0.0;
-  double range_sigma_m = 0.1;
+  double azimuth_sigma_rad = 0.0;  ///< valid [0, 1]
+  double range_sigma_m = 0.1;      ///< valid [0, 10]
 };
 
 struct RefineResult {

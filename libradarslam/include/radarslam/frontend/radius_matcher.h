@@ -15,11 +15,12 @@
 namespace radarslam {
 
 struct MatchParams {
-  double radius_m = 4.0;             ///< search radius around the prediction while tracking
-  double init_radius_m = 12.5;       ///< on initialisation / after a tracking loss (paper: 50 px)
-  double ratio = 0.9;                ///< Lowe ratio, best / second best within the radius (1 = off)
-  int max_descriptor_distance = 80;  ///< Hamming bits (binary descriptors); ignored for float ones
-  bool mutual = true;                ///< keep only mutual best matches
+  double radius_m = 4.0;        ///< search radius around the prediction while tracking; valid (0, 1000]
+  double init_radius_m = 12.5;  ///< on initialisation / after a tracking loss (paper: 50 px); valid (0, 1000]
+  double ratio = 0.9;           ///< Lowe ratio, best / second best within the radius (1 = off); valid (0, 1]
+  int max_descriptor_distance =
+      80;              ///< Hamming bits (binary descriptors); ignored for float ones; valid [0, 1024]
+  bool mutual = true;  ///< keep only mutual best matches
 };
 
 struct FeatureSet {

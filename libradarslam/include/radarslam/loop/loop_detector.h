@@ -16,10 +16,11 @@ namespace radarslam {
 class YamlParams;
 
 struct LoopDetectorParams {
-  float max_descriptor_distance = 0.45f;  ///< candidates must be closer than this (L2)
-  std::size_t max_candidates = 5;         ///< top-k
-  std::size_t exclude_recent = 30;        ///< never return the last N keyframes
-  double exclude_recent_distance_m = 50;  ///< nor keyframes driven less than this before the query
+  float max_descriptor_distance = 0.45f;  ///< candidates must be closer than this (L2); valid (0, 100]
+  std::size_t max_candidates = 5;         ///< top-k; valid [1, 1000]
+  std::size_t exclude_recent = 30;        ///< never return the last N keyframes; valid [0, 1000000]
+  double exclude_recent_distance_m =
+      50;  ///< nor keyframes driven less than this before the query; valid [0, 1000000]
 };
 
 /// Overrides `params` from max_descriptor_distance, max_candidates, exclude_recent,

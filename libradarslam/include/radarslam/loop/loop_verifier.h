@@ -32,22 +32,22 @@ namespace radarslam {
 class YamlParams;
 
 struct LoopVerifierParams {
-  double voxel_m = 1.0;                 ///< thinning for the global search
-  std::size_t max_search_points = 300;  ///< per cloud, after thinning
-  int rotation_steps = 180;             ///< 2 degrees
-  double max_translation_m = 40;        ///< search window for the translation
-  double vote_cell_m = 1.0;             ///< Hough grid cell
-  int hypotheses = 8;                   ///< refined and scored
-  double suppression_distance_m = 3.0;  ///< hypotheses closer than this (and angle) are one
-  double suppression_angle_deg = 15.0;
-  double inlier_distance_m = 1.0;    ///< point-to-point inlier gate after alignment
-  double max_ambiguity_ratio = 0.7;  ///< second-best (far in pose) / best consensus
-  std::size_t min_inliers = 40;      ///< on the full clouds
-  double min_inlier_ratio = 0.4;     ///< inliers / size of the smaller full cloud
-  double max_rms_m = 0.6;            ///< inlier RMS after ICP
-  int min_inlier_sectors = 4;        ///< of 8 bearing sectors around the query sensor
-  double min_sigma_m = 0.1;
-  double information_scale = 0.05;
+  double voxel_m = 1.0;                 ///< thinning for the global search; valid [0, 100]
+  std::size_t max_search_points = 300;  ///< per cloud, after thinning; valid [3, 100000]
+  int rotation_steps = 180;             ///< 2 degrees; valid [4, 3600]
+  double max_translation_m = 40;        ///< search window for the translation; valid (0, 1000]
+  double vote_cell_m = 1.0;             ///< Hough grid cell; valid [0.01, 100]
+  int hypotheses = 8;                   ///< refined and scored; valid [1, 1000]
+  double suppression_distance_m = 3.0;  ///< hypotheses closer than this (and angle) are one; valid [0, 1000]
+  double suppression_angle_deg = 15.0;  ///< valid [0, 180]
+  double inlier_distance_m = 1.0;       ///< point-to-point inlier gate after alignment; valid (0, 100]
+  double max_ambiguity_ratio = 0.7;     ///< second-best (far in pose) / best consensus; valid [0, 10]
+  std::size_t min_inliers = 40;         ///< on the full clouds; valid [0, 1e6]
+  double min_inlier_ratio = 0.4;        ///< inliers / size of the smaller full cloud; valid [0, 1]
+  double max_rms_m = 0.6;               ///< inlier RMS after ICP; valid (0, 100]
+  int min_inlier_sectors = 4;           ///< of 8 bearing sectors around the query sensor; valid [0, 8]
+  double min_sigma_m = 0.1;             ///< valid [0, 100]
+  double information_scale = 0.05;      ///< valid (0, 1000000]
 };
 
 /// Overrides `params` from the YAML keys of the same names.

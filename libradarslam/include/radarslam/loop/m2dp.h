@@ -34,13 +34,13 @@ namespace radarslam {
 class YamlParams;
 
 struct M2DPParams {
-  int azimuths = 4;               ///< p
-  int elevations = 16;            ///< q
-  int rings = 8;                  ///< l
-  int sectors = 16;               ///< t
-  double power_height_m = 5.0;    ///< scale of the power coordinate (0 = planar cloud)
-  double radius_quantile = 0.95;  ///< outer ring radius = this quantile of point distances
-  std::size_t min_points = 10;    ///< fewer points: descriptor is invalid (empty)
+  int azimuths = 4;               ///< p; valid [1, 64]
+  int elevations = 16;            ///< q; valid [1, 64]
+  int rings = 8;                  ///< l; valid [1, 64]
+  int sectors = 16;               ///< t; valid [1, 64]
+  double power_height_m = 5.0;    ///< scale of the power coordinate (0 = planar cloud); valid [0, 1000]
+  double radius_quantile = 0.95;  ///< outer ring radius = this quantile of point distances; valid (0, 1]
+  std::size_t min_points = 10;    ///< fewer points: descriptor is invalid (empty); valid [3, 100000]
 };
 
 /// Overrides `params` from the keys azimuths, elevations, rings, sectors, power_height_m,

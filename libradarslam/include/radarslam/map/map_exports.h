@@ -57,6 +57,10 @@ struct OctomapExportParams {
   Fill fill = Fill::grid_columns;
   double resolution_m = 0.2;  ///< (0, 100] m; the map must fit OctoMap's 2^16 voxels per axis
   double max_range_m = -1.0;  ///< point_rays only: insertPointCloud max range (-1 = unlimited)
+  /// point_rays only: refuse (InputError) trees whose rays would touch more voxels than this
+  /// (estimated from the keyframes' bounding boxes), and maps farther than 32767 voxels from the
+  /// origin (OctoMap keys). grid_columns is bounded by the grid's own cell limit and key check.
+  std::size_t max_voxels = 100'000'000;
 };
 /// Writes STEM.bt (binary, max-likelihood) and STEM.ot (full log-odds) into `dir`.
 std::vector<std::filesystem::path> exportOctomap(const KeyframeMap& map, const std::filesystem::path& dir,

@@ -14,8 +14,8 @@ namespace radarslam {
 class YamlParams;
 
 struct KeyframeInsertionParams {
-  double keyframe_distance_m = 2.0;
-  double keyframe_angle_rad = 0.2;
+  double keyframe_distance_m = 2.0;  ///< valid [0, 10000]
+  double keyframe_angle_rad = 0.2;   ///< valid [0, 6.2832]
   /// Diagonal information (x, y, phi) of the odometry edge to the previous keyframe.
   std::array<double, 3> odometry_information{100.0, 100.0, 1000.0};
 };

@@ -24,9 +24,9 @@ namespace radarslam {
 class YamlParams;
 
 struct CartesianParams {
-  int size_px = 701;       ///< image side (RadarSLAM: 701 px covering +-87.5 m); the width
-  double m_per_px = 0.25;  ///< metres per pixel
-  int height_px = 0;       ///< image rows; 0 = size_px (square)
+  int size_px = 701;       ///< image side (RadarSLAM: 701 px covering +-87.5 m); the width; valid [16, 4096]
+  double m_per_px = 0.25;  ///< metres per pixel; valid [0.01, 10]
+  int height_px = 0;       ///< image rows; 0 = size_px (square); valid [0, 4096]
   /// Convert the remap tables to OpenCV's fixed-point form (1/32 px sub-steps): ~2x faster
   /// remap, interpolation weights quantised to 1/32.
   bool fixed_point_maps = true;

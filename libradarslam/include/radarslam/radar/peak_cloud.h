@@ -24,13 +24,13 @@ namespace radarslam {
 class YamlParams;
 
 struct PeakCloudParams {
-  double min_peak_prominence = 20.0;  ///< delta_p, power units (0..255)
-  int min_peak_distance_bins = 20;    ///< delta_d, bins
-  double min_range_m = 2.5;           ///< ignore near-range clutter
-  double max_range_m = 0.0;           ///< 0 = full range
+  double min_peak_prominence = 20.0;  ///< delta_p, power units (0..255); valid [0, 255]
+  int min_peak_distance_bins = 20;    ///< delta_d, bins; valid [1, 10000]
+  double min_range_m = 2.5;           ///< ignore near-range clutter; valid [0, 1000]
+  double max_range_m = 0.0;           ///< 0 = full range; valid [0, 10000]
   /// Box-filter each azimuth over this many bins (odd; <= 1 = off) before findPeaks; the points'
   /// power is then the smoothed power. Off by default: see the measurement in peak_cloud.cpp.
-  int smoothing_bins = 0;
+  int smoothing_bins = 0;  ///< valid [0, 1000]
 };
 
 /// Overrides `params` from the keys min_peak_prominence, min_peak_distance_bins, min_range_m,

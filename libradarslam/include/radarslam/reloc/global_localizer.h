@@ -22,10 +22,11 @@ class YamlParams;
 
 struct GlobalLocalizerParams {
   M2DPParams m2dp;                       ///< must match the map's descriptors (else recomputed)
-  std::size_t candidates = 6;            ///< top-k within max_descriptor_distance, verified
-  float max_descriptor_distance = 0.6f;  ///< retrieval radius (L2)
-  std::size_t fallback_candidates = 4;   ///< when none of those verifies: the nearest N beyond the radius
-  bool recompute_descriptors = false;    ///< ignore the map's stored descriptors
+  std::size_t candidates = 6;            ///< top-k within max_descriptor_distance, verified; valid [1, 1000]
+  float max_descriptor_distance = 0.6f;  ///< retrieval radius (L2); valid (0, 100]
+  std::size_t fallback_candidates =
+      4;  ///< when none of those verifies: the nearest N beyond the radius; valid [0, 1000]
+  bool recompute_descriptors = false;  ///< ignore the map's stored descriptors
   LoopVerifierParams verifier;
 };
 

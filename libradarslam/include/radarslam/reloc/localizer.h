@@ -32,17 +32,18 @@ struct LocalizerParams {
   bool motion_compensation = true;  ///< compensate the scan's peak cloud with the odometry velocity
   GlobalLocalizerParams global;
   MapTrackerParams tracker;
-  int max_missed_scans = 3;       ///< rejected registrations in a row before global search again
-  int global_retry_interval = 1;  ///< while lost, try global localisation every N scans
+  int max_missed_scans =
+      3;  ///< rejected registrations in a row before global search again; valid [0, 1000000]
+  int global_retry_interval = 1;  ///< while lost, try global localisation every N scans; valid [1, 1000000]
   /// > 0: the map's keyframe clouds are raw (not motion compensated, e.g. map-synth maps) and are
   /// compensated at start-up assuming this sweep period (reloc/map_motion.h). 0: used as stored.
-  double map_sweep_period_s = 0;
+  double map_sweep_period_s = 0;  ///< valid [0, 1000000]
   /// A global fix is reported only when this many consecutive scans gave fixes that agree through
   /// the odometry (perceptual aliasing: similar streets verify now and then; measured in
   /// docs/localization.md). 1 = report the first fix.
-  int confirm_fixes = 2;
-  double confirm_distance_m = 2.0;  ///< agreement of consecutive fixes
-  double confirm_angle_deg = 5.0;
+  int confirm_fixes = 2;            ///< valid [1, 100]
+  double confirm_distance_m = 2.0;  ///< agreement of consecutive fixes; valid (0, 1000]
+  double confirm_angle_deg = 5.0;   ///< valid (0, 180]
 };
 
 /// Overrides from the `localization:` section of `yaml`: motion_compensation, max_missed_scans,

@@ -18,12 +18,13 @@ class YamlParams;
 struct MapTrackerParams {
   SubmapParams submap;
   IcpParams icp;
-  double min_fit_score = 0.35;  ///< inliers / scan points
-  std::size_t min_inliers = 60;
-  double max_rms_m = 0.6;
-  double max_jump_m = 3.0;  ///< |registered - predicted| position
-  double max_jump_deg = 8.0;
-  double max_position_sigma_m = 1.0;  ///< sqrt of the largest eigenvalue of the xy covariance
+  double min_fit_score = 0.35;   ///< inliers / scan points; valid [0, 1]
+  std::size_t min_inliers = 60;  ///< valid [3, 1000000]
+  double max_rms_m = 0.6;        ///< valid (0, 100]
+  double max_jump_m = 3.0;       ///< |registered - predicted| position; valid (0, 1000]
+  double max_jump_deg = 8.0;     ///< valid (0, 180]
+  double max_position_sigma_m =
+      1.0;  ///< sqrt of the largest eigenvalue of the xy covariance; valid (0, 1000]
 };
 
 /// Overrides from min_fit_score, min_inliers, max_rms_m, max_jump_m, max_jump_deg,

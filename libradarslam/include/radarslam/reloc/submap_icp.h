@@ -26,24 +26,28 @@ namespace radarslam {
 class YamlParams;
 
 struct SubmapParams {
-  double radius_m = 60;            ///< keyframes within this distance of the centre
-  double voxel_m = 0.5;            ///< submap thinning (centroid per voxel)
-  double max_point_range_m = 0;    ///< keyframe points farther from their sensor are dropped (0 = all)
-  double rebuild_distance_m = 15;  ///< a tracker rebuilds when the prediction moves this far
+  double radius_m = 60;  ///< keyframes within this distance of the centre; valid (0, 10000]
+  double voxel_m = 0.5;  ///< submap thinning (centroid per voxel); valid [0.01, 100]
+  double max_point_range_m =
+      0;  ///< keyframe points farther from their sensor are dropped (0 = all); valid [0, 10000]
+  double rebuild_distance_m =
+      15;  ///< a tracker rebuilds when the prediction moves this far; valid [0, 10000]
 };
 
 struct IcpParams {
-  int max_iterations = 30;
-  double max_correspondence_m = 3.0;  ///< gate of the first iteration
-  double inlier_distance_m = 1.0;     ///< gate of the last iterations and inlier definition
-  double cauchy_m = 0.5;              ///< robust kernel scale
-  double normal_radius_m = 1.5;       ///< neighbourhood for the local line fit
-  double max_planarity = 0.1;         ///< eigenvalue ratio below which a point is on a line
-  double convergence_m = 1e-3, convergence_rad = 1e-4;
-  double scan_voxel_m = 1.0;           ///< query cloud thinning (strongest point per voxel)
-  std::size_t max_scan_points = 1000;  ///< after thinning (even stride)
-  double min_sigma_m = 0.05;
-  double covariance_scale = 50.0;  ///< calibrated on the simulator demo (docs/localization.md)
+  int max_iterations = 30;            ///< valid [1, 1000]
+  double max_correspondence_m = 3.0;  ///< gate of the first iteration; valid (0, 1000]
+  double inlier_distance_m = 1.0;     ///< gate of the last iterations and inlier definition; valid (0, 1000]
+  double cauchy_m = 0.5;              ///< robust kernel scale; valid (0, 100]
+  double normal_radius_m = 1.5;       ///< neighbourhood for the local line fit; valid (0, 100]
+  double max_planarity = 0.1;         ///< eigenvalue ratio below which a point is on a line; valid [0, 1]
+  double convergence_m = 1e-3,
+         convergence_rad = 1e-4;       ///< valid convergence_m [0, 10], convergence_rad [0, 1]
+  double scan_voxel_m = 1.0;           ///< query cloud thinning (strongest point per voxel); valid [0, 100]
+  std::size_t max_scan_points = 1000;  ///< after thinning (even stride); valid [10, 1000000]
+  double min_sigma_m = 0.05;           ///< valid [0, 100]
+  double covariance_scale =
+      50.0;  ///< calibrated on the simulator demo (docs/localization.md); valid (0, 1000000]
 };
 
 void loadParams(const YamlParams& yaml, SubmapParams& params);

@@ -27,11 +27,11 @@ class YamlParams;
 namespace radarslam::sim {
 
 struct RadarGeometry {
-  int azimuths = 400;  ///< per rotation (Oxford CTS350-X: 400)
-  int bins = 3768;     ///< range bins (Oxford: 3768)
-  double range_resolution_m = 0.0432;
-  double rotation_hz = 4.0;  ///< 4 Hz = 240 rpm
-  int encoder_size = 5600;   ///< encoder counts per revolution (Navtech)
+  int azimuths = 400;                  ///< per rotation (Oxford CTS350-X: 400); valid [16, 4096]
+  int bins = 3768;                     ///< range bins (Oxford: 3768); valid [16, 16384]
+  double range_resolution_m = 0.0432;  ///< valid [0.001, 10]
+  double rotation_hz = 4.0;            ///< 4 Hz = 240 rpm; valid [0.1, 100]
+  int encoder_size = 5600;             ///< encoder counts per revolution (Navtech); valid [16, 1000000]
 
   double maxRange() const { return bins * range_resolution_m; }
   StampNs scanPeriodNs() const;
@@ -41,32 +41,34 @@ struct RadarGeometry {
 };
 
 struct RadarPhysics {
-  double beam_width_deg = 1.8;          ///< two-way 3 dB width of the antenna main lobe
-  int rays_per_azimuth = 4;             ///< sub-rays traced per azimuth
-  double sidelobe_db = -45;             ///< far sidelobe level relative to the main lobe
-  double sidelobe_extent_deg = 10;      ///< far sidelobes reach this far either side
-  double power_scale = 4.0e9;           ///< received power of a unit target at 1 m
-  double range_exponent = 0.6;          ///< power falls as range^-exponent
-  double specular_exponent = 20;        ///< sharpness of the specular lobe (smooth surfaces)
-  double range_psf_bins = 1.0;          ///< sigma of the range response, bins
-  double speckle_range_corr = 0.93;     ///< correlation of the speckle field between adjacent bins
-  double speckle_azimuth_corr = 0.55;   ///< ... between adjacent azimuths
-  double noise_floor_power = 6.5;       ///< mean noise power (amplitude^2) far away
-  double near_noise_power = 4.0;        ///< extra noise power close to the radar
-  double near_noise_range_m = 60.0;     ///< e-folding range of the extra near noise
-  double azimuth_gain_jitter_db = 1.5;  ///< per-azimuth receiver gain variation
-  double near_clutter_power = 3.0e4;    ///< housing/mount returns in the first metres
-  double near_clutter_range_m = 1.6;
-  double saturation_amplitude = 6.0e6;    ///< receiver clips here (pixel ~136)
-  double streak_threshold_power = 1.5e8;  ///< a return this strong saturates the receiver...
-  double streak_power = 3.0e3;            ///< ...raising the whole azimuth by this power
-  double streak_probability = 0.1;        ///< chance a saturating azimuth shows the streak
-  double multipath_db = -14;              ///< ghost power relative to the direct return
-  double multipath_min_cos = 0.55;        ///< only near-normal specular walls make ghosts
-  double ground_clutter_power = 120.0;    ///< road/grass returns of the fan beam at 10 m...
-  double ground_clutter_exponent = 0.8;   ///< ...falling as range^-exponent, up to the first wall
-  double ground_texture_m = 1.5;          ///< ground patches (stable across scans)
-  double code_per_octave = 6.02;          ///< 8-bit code per doubling of amplitude (20*log10)
+  double beam_width_deg = 1.8;      ///< two-way 3 dB width of the antenna main lobe; valid (0, 90]
+  int rays_per_azimuth = 4;         ///< sub-rays traced per azimuth; valid [1, 64]
+  double sidelobe_db = -45;         ///< far sidelobe level relative to the main lobe; valid [-200, 0]
+  double sidelobe_extent_deg = 10;  ///< far sidelobes reach this far either side; valid [0, 180]
+  double power_scale = 4.0e9;       ///< received power of a unit target at 1 m; valid (0, 1e+20]
+  double range_exponent = 0.6;      ///< power falls as range^-exponent; valid [0, 10]
+  double specular_exponent = 20;    ///< sharpness of the specular lobe (smooth surfaces); valid [0, 1000]
+  double range_psf_bins = 1.0;      ///< sigma of the range response, bins; valid [0, 100]
+  double speckle_range_corr =
+      0.93;  ///< correlation of the speckle field between adjacent bins; valid [0, 0.999]
+  double speckle_azimuth_corr = 0.55;   ///< ... between adjacent azimuths; valid [0, 0.999]
+  double noise_floor_power = 6.5;       ///< mean noise power (amplitude^2) far away; valid [0, 1000000000000]
+  double near_noise_power = 4.0;        ///< extra noise power close to the radar; valid [0, 1000000000000]
+  double near_noise_range_m = 60.0;     ///< e-folding range of the extra near noise; valid (0, 10000]
+  double azimuth_gain_jitter_db = 1.5;  ///< per-azimuth receiver gain variation; valid [0, 60]
+  double near_clutter_power = 3.0e4;    ///< housing/mount returns in the first metres; valid [0, 1e+20]
+  double near_clutter_range_m = 1.6;    ///< valid [0, 1000]
+  double saturation_amplitude = 6.0e6;  ///< receiver clips here (pixel ~136); valid (0, 1e+20]
+  double streak_threshold_power = 1.5e8;  ///< a return this strong saturates the receiver; valid (0, 1e+30]
+  double streak_power = 3.0e3;            ///< ...raising the whole azimuth by this power; valid [0, 1e+20]
+  double streak_probability = 0.1;        ///< chance a saturating azimuth shows the streak; valid [0, 1]
+  double multipath_db = -14;              ///< ghost power relative to the direct return; valid [-200, 0]
+  double multipath_min_cos = 0.55;        ///< only near-normal specular walls make ghosts; valid [0, 1]
+  double ground_clutter_power = 120.0;    ///< road/grass returns of the fan beam at 10 m; valid [0, 1e+20]
+  double ground_clutter_exponent =
+      0.8;                        ///< ...falling as range^-exponent, up to the first wall; valid [0, 10]
+  double ground_texture_m = 1.5;  ///< ground patches (stable across scans); valid (0, 1000]
+  double code_per_octave = 6.02;  ///< 8-bit code per doubling of amplitude (20*log10); valid (0, 100]
 };
 
 /// Weather effects on top of the physics.

@@ -15,19 +15,19 @@
 namespace radarslam::sim {
 
 struct RouteParams {
-  double lane_offset_m = 1.8;             ///< traversal 1: left of the street centreline (UK)
-  double lane_offset_traversal2_m = 0.6;  ///< traversal 2: a different lane position
-  double city_speed_mps = 11.0;
-  double corridor_speed_mps = 13.0;
-  double country_speed_mps = 15.0;  ///< never above 15 m/s
-  double lateral_accel_mps2 = 2.0;  ///< sets the speed in turns
-  double accel_mps2 = 1.5, decel_mps2 = 2.5;
-  double stop_probability = 0.35;  ///< per straight crossing of an intersection
-  double stop_min_s = 2.0, stop_max_s = 6.0;
-  double corner_radius_m = 9.0;
-  double country_corner_radius_m = 45.0;
-  double start_time_s = 1600000000.0;       ///< UNIX time of the route start (traversal 1)
-  double traversal2_delay_s = 7 * 86400.0;  ///< traversal 2 starts this much later
+  double lane_offset_m = 1.8;  ///< traversal 1: left of the street centreline (UK); valid [-20, 20]
+  double lane_offset_traversal2_m = 0.6;      ///< traversal 2: a different lane position; valid [-20, 20]
+  double city_speed_mps = 11.0;               ///< valid (0, 15]
+  double corridor_speed_mps = 13.0;           ///< valid (0, 15]
+  double country_speed_mps = 15.0;            ///< never above 15 m/s; valid (0, 15]
+  double lateral_accel_mps2 = 2.0;            ///< sets the speed in turns; valid (0, 20]
+  double accel_mps2 = 1.5, decel_mps2 = 2.5;  ///< valid accel_mps2 (0, 20], decel_mps2 (0, 20]
+  double stop_probability = 0.35;             ///< per straight crossing of an intersection; valid [0, 1]
+  double stop_min_s = 2.0, stop_max_s = 6.0;  ///< valid stop_min_s [0, 600], stop_max_s [0, 600]
+  double corner_radius_m = 9.0;               ///< valid [1, 100]
+  double country_corner_radius_m = 45.0;      ///< valid [1, 1000]
+  double start_time_s = 1600000000.0;  ///< UNIX time of the route start (traversal 1); valid [0, 4000000000]
+  double traversal2_delay_s = 7 * 86400.0;  ///< traversal 2 starts this much later; valid [0, 1000000000]
 };
 
 struct RouteSample {

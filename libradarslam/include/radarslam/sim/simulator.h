@@ -13,12 +13,12 @@
 namespace radarslam::sim {
 
 struct SimulationConfig {
-  std::uint64_t seed = 1;
-  int traversal = 1;              ///< 2 = a second drive through the same world
+  std::uint64_t seed = 1;         ///< valid [0, 2147483647]
+  int traversal = 1;              ///< 2 = a second drive through the same world; valid [1, 2]
   std::string weather = "clear";  ///< clear, fog, rain, snow
-  int scans = 0;                  ///< > 0: exactly this many scans
-  double length_m = 0;            ///< > 0: route length (0 and scans 0: the full demo tour)
-  int png_compression = 1;
+  int scans = 0;                  ///< > 0: exactly this many scans; valid [0, 100000]
+  double length_m = 0;      ///< > 0: route length (0 and scans 0: the full demo tour); valid [0, 100000]
+  int png_compression = 1;  ///< valid [0, 9]
   WorldParams world;
   RouteParams route;
   RadarGeometry geometry;

@@ -54,16 +54,20 @@ struct Mover {
 };
 
 struct WorldParams {
-  int blocks_x = 5;  ///< city blocks west-east (streets = blocks + 1)
-  int blocks_y = 4;  ///< city blocks south-north
-  double block_min_m = 85, block_max_m = 130;
-  double street_half_width_min_m = 9, street_half_width_max_m = 13;  ///< centreline to facades
-  double parked_car_probability = 0.55;  ///< per parking slot (redrawn per traversal)
-  double pole_spacing_m = 32;
-  double tree_probability = 0.4;  ///< per street side: lined with trees
-  int moving_vehicles = 30;
-  double countryside_extent_m = 550;     ///< how far the countryside loop reaches east of the city
-  double corridor_facade_period_m = 12;  ///< identical terraced houses along the corridor street
+  int blocks_x = 5;  ///< city blocks west-east (streets = blocks + 1); valid [1, 50]
+  int blocks_y = 4;  ///< city blocks south-north; valid [1, 50]
+  double block_min_m = 85, block_max_m = 130;  ///< valid block_min_m [10, 1000], block_max_m [10, 1000]
+  double street_half_width_min_m = 9,
+         street_half_width_max_m = 13;   ///< centreline to facades; valid street_half_width_min_m [2, 100],
+                                         ///< street_half_width_max_m [2, 100]
+  double parked_car_probability = 0.55;  ///< per parking slot (redrawn per traversal); valid [0, 1]
+  double pole_spacing_m = 32;            ///< valid [1, 10000]
+  double tree_probability = 0.4;         ///< per street side: lined with trees; valid [0, 1]
+  int moving_vehicles = 30;              ///< valid [0, 1000]
+  double countryside_extent_m =
+      550;  ///< how far the countryside loop reaches east of the city; valid [50, 10000]
+  double corridor_facade_period_m =
+      12;  ///< identical terraced houses along the corridor street; valid [1, 1000]
 };
 
 /// One hit of a ray on a surface.

@@ -17,26 +17,28 @@ class YamlParams;
 /// Local mapping (Sec. III-B): map points and local bundle adjustment.
 struct LocalMappingParams {
   bool bundle_adjustment = true;
-  int window_keyframes = 6;          ///< newest keyframes whose poses the local BA optimises
-  int interval_keyframes = 2;        ///< a local BA after every this many keyframes (the window overlaps)
-  int max_iterations = 8;            ///< Levenberg-Marquardt iterations per local BA
-  double observation_sigma_m = 0.1;  ///< keypoint position noise (Cartesian pixel 0.25 m / sqrt(12) ~ 0.07)
-  double huber_sigmas = 2.0;         ///< robust kernel width, in sigmas
-  int min_observations = 3;          ///< map points seen by fewer keyframes are culled (paper: <= 2)
+  int window_keyframes = 6;  ///< newest keyframes whose poses the local BA optimises; valid [2, 100]
+  int interval_keyframes =
+      2;  ///< a local BA after every this many keyframes (the window overlaps); valid [1, 100]
+  int max_iterations = 8;  ///< Levenberg-Marquardt iterations per local BA; valid [0, 1000]
+  double observation_sigma_m =
+      0.1;  ///< keypoint position noise (Cartesian pixel 0.25 m / sqrt(12) ~ 0.07); valid (0, 100]
+  double huber_sigmas = 2.0;  ///< robust kernel width, in sigmas; valid (0, 100]
+  int min_observations = 3;  ///< map points seen by fewer keyframes are culled (paper: <= 2); valid [2, 1000]
   /// Odometry (keyframe-to-keyframe) priors inside the BA window, so a window with few shared
   /// points cannot drift freely: the tracked relative pose with these sigmas.
-  double prior_sigma_xy_m = 0.3;
-  double prior_sigma_phi_rad = 0.01;
+  double prior_sigma_xy_m = 0.3;      ///< valid (0, 1000]
+  double prior_sigma_phi_rad = 0.01;  ///< valid (0, 10]
 };
 
 /// Odometry edges of the pose graph (Sec. III-D): keyframe-to-keyframe relative poses with a
 /// diagonal information from sigma = base + per_metre * distance (a lost scan: x lost_factor).
 struct OdometryEdgeParams {
-  double sigma_xy_base_m = 0.02;
-  double sigma_xy_per_m = 0.01;
-  double sigma_phi_base_rad = 0.001;
-  double sigma_phi_per_m = 0.0002;
-  double lost_factor = 10.0;
+  double sigma_xy_base_m = 0.02;      ///< valid (0, 100]
+  double sigma_xy_per_m = 0.01;       ///< valid [0, 10]
+  double sigma_phi_base_rad = 0.001;  ///< valid (0, 10]
+  double sigma_phi_per_m = 0.0002;    ///< valid [0, 1]
+  double lost_factor = 10.0;          ///< valid [1, 1000000]
 };
 
 /// Loop closing (Sec. III-C).
@@ -46,10 +48,10 @@ struct LoopClosingParams {
   M2DPParams m2dp;
   LoopDetectorParams detector;
   LoopVerifierParams verifier;
-  int max_verifications = 2;  ///< candidates verified per keyframe (best descriptor first)
+  int max_verifications = 2;  ///< candidates verified per keyframe (best descriptor first); valid [1, 100]
   /// ... and only this many when the previous keyframe closed a loop (along a revisit every
   /// keyframe has a loop; verification is the most expensive step).
-  int max_verifications_after_loop = 1;
+  int max_verifications_after_loop = 1;  ///< valid [0, 100]
   /// Drift gate (ours; the paper relies on verification alone). A loop says where the query
   /// keyframe really is; odometry cannot have drifted arbitrarily far since the matched keyframe,
   /// so a loop implying a correction larger than drift_base_m + drift_fraction * (distance driven
@@ -58,21 +60,21 @@ struct LoopClosingParams {
   /// verifier.max_translation_m + that bound are not even verified (saves most verifications).
   /// Repeated structure (a city of similar blocks) is what this stops: verification alone cannot
   /// tell two identical blocks apart. drift_fraction <= 0 disables the gate.
-  double drift_fraction = 0.05;
-  double drift_base_m = 5.0;
-  double drift_base_deg = 5.0;
-  double drift_deg_per_m = 0.01;
+  double drift_fraction = 0.05;   ///< valid [0, 1]
+  double drift_base_m = 5.0;      ///< valid [0, 10000]
+  double drift_base_deg = 5.0;    ///< valid [0, 360]
+  double drift_deg_per_m = 0.01;  ///< valid [0, 10]
   /// After accepting a loop, the graph is optimised only if the loop moves the query keyframe by
   /// more than this from its current estimate; consistent loops (e.g. along a revisit already
   /// corrected) are just added. The final optimisation (finish()) uses every loop.
-  double optimise_min_correction_m = 1.0;
-  double optimise_min_correction_deg = 1.0;
+  double optimise_min_correction_m = 1.0;    ///< valid [0, 10000]
+  double optimise_min_correction_deg = 1.0;  ///< valid [0, 360]
   /// Information of a loop edge: diag(1/sigma^2) with these sigmas - the spread of verified loop
   /// poses against ground truth on the simulator (max 0.25 m / 1.8 deg). The verifier's own
   /// Gauss-Newton information (loop/loop_verifier.h) is far more confident than that, which made
   /// the pose graph's chi^2 test drop hundreds of true loops; set these to 0 to use it anyway.
-  double loop_sigma_xy_m = 0.2;
-  double loop_sigma_phi_deg = 1.0;
+  double loop_sigma_xy_m = 0.2;     ///< valid (0, 100]
+  double loop_sigma_phi_deg = 1.0;  ///< valid (0, 180]
 };
 
 struct SlamParams {
@@ -83,7 +85,7 @@ struct SlamParams {
   PoseGraphParams pose_graph;
   /// 1: everything runs in the caller's thread (deterministic); >= 2: local mapping and loop
   /// closing run in their own threads, as in the paper.
-  int threads = 3;
+  int threads = 3;  ///< valid [1, 64]
 };
 
 /// Overrides `params` from `yaml` (the front end via loadParams(yaml, params.odometry), the rest
