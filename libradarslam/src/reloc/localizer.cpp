@@ -182,7 +182,7 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     const IcpResult& r = tr.icp;
     // The checks, in order; the first failure is reported in res.check.
     if (!tr.accepted && !tr.degenerate) {
-      res.check = "registration: " + tr.reason;
+      res.check = "registration";  // tr.reason has the details
     } else if (mahalanobis2(poseDifference(predicted, r.pose), predicted_cov + r.covariance) >
                m.chi2_threshold) {
       res.check = "odometry";
