@@ -64,7 +64,7 @@ TEST(LocalizeCli, SecondTraversalOfSimulatedWorld) {
   ASSERT_EQ(side.size(), 120u) << log;
   std::size_t localised = 0;
   for (const auto& r : side) {
-    ASSERT_EQ(r.size(), 16u);
+    ASSERT_EQ(r.size(), 28u);
     localised += r[3] == "1";
     EXPECT_EQ(r[3] == "1", r[2] != "lost");
   }
