@@ -15,11 +15,12 @@ struct LocalizationScore {
   std::size_t scans = 0, localised = 0, with_truth = 0;
   std::size_t tracking = 0, global_fix = 0, degraded = 0, lost = 0;
   double rmse_x_m = 0, rmse_y_m = 0, rmse_yaw_deg = 0;
-  double nees_mean = 0, nees_within_95 = 0;  ///< over the localised scans with truth
-  std::size_t trusted = 0;                   ///< tracking + global_fix with truth
-  double trusted_within = 0;                 ///< fraction of `trusted` within 0.3 m and 0.5 deg
-  std::size_t trusted_far_off = 0;           ///< trusted scans > 2 m or > 2 deg off
-  std::size_t degraded_far_off = 0;          ///< degraded scans > 2 m or > 2 deg off
+  double nees_mean = 0, nees_within_95 = 0;    ///< over the localised scans with truth
+  double nees_xy_mean = 0, nees_yaw_mean = 0;  ///< the position (2 dof) and heading (1 dof) parts
+  std::size_t trusted = 0;                     ///< tracking + global_fix with truth
+  double trusted_within = 0;                   ///< fraction of `trusted` within 0.3 m and 0.5 deg
+  std::size_t trusted_far_off = 0;             ///< trusted scans > 2 m or > 2 deg off
+  std::size_t degraded_far_off = 0;            ///< degraded scans > 2 m or > 2 deg off
 };
 
 /// Throws InputError on a malformed side file.
