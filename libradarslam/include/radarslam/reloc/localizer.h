@@ -8,9 +8,12 @@
 //                    refined and checked by a MapTracker registration from it, reported once
 //                    confirm_fixes consecutive fixes agree through the odometry -> GlobalFix
 //     localised:     MapTracker registration from last pose (+) T_prev_cur -> Tracking
-//   A rejected registration reports the scan as not localised (Lost) and keeps dead reckoning with
-//   odometry for up to max_missed_scans scans, still trying to register from the prediction; after
-//   that global localisation runs again. A pose is only reported when a test accepted it.
+//   Every tracked registration goes through the integrity checks (reloc/integrity.h): passed ->
+//   Tracking; a degenerate one fused with the odometry prediction -> Degraded; a failed check (or a
+//   rejected registration) -> the odometry prediction with its growing covariance, Degraded, until
+//   integrity.max_failures or the 3-sigma bound -> Lost (no pose) and global localisation again.
+//   (integrity.enabled = false: a rejected registration is Lost, dead-reckoned silently for up to
+//   max_missed_scans scans.)
 #include <mrpt/math/TPose2D.h>
 #include <Eigen/Core>
 
