@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <radarslam/core/atomic_file.h>
 #include <radarslam/core/errors.h>
 #include <radarslam/core/log.h>
 #include <radarslam/core/output_path.h>
@@ -18,6 +19,7 @@
 
 #include "cli_common.h"
 #include "command.h"
+#include "eval_localization.h"
 
 namespace radarslam::cli {
 namespace {
@@ -92,6 +94,11 @@ int runEval(int argc, char** argv) {
   TCLAP::ValueArg<double> gap_arg("", "max-gt-gap",
                                   "Drop estimates between ground-truth poses further apart than this (s)",
                                   false, defaults.max_gt_gap_s, "SECONDS", cmd.tclap());
+  TCLAP::SwitchArg localization_arg(
+      "", "localization",
+      "EST is the per-scan side file of `radarslam localize` (FILE.csv) and GT a trajectory in the map "
+      "frame (e.g. a simulated DIR/gt/poses.tum): RMSE of x, y, yaw, NEES consistency, per-status errors",
+      cmd.tclap());
   cmd.parse(argc, argv);
 
   const std::string where = "radarslam eval";
@@ -126,6 +133,16 @@ int runEval(int argc, char** argv) {
     checkDirectoryOutput(plot_arg.getValue(), "--plot-dir");
   }
 
+  if (localization_arg.getValue()) {
+    const LocalizationScore score = scoreLocalization(est_path, loadGroundTruth(gt_path, gt_options));
+    std::cout << formatLocalizationScore(score);
+    if (json_arg.isSet()) {
+      writeTextAtomically(json_arg.getValue(),
+                          localizationScoreJson(score, est_path.string(), gt_path.string()));
+      std::cout << "  report         " << json_arg.getValue() << "\n";
+    }
+    return 0;
+  }
   const Trajectory est = readTrajectoryFile(est_path, est_options);
   const Trajectory gt = loadGroundTruth(gt_path, gt_options);
   const eval::EvalReport report = eval::evaluate(est, gt, params, est_path.string(), gt_path.string());

@@ -37,6 +37,7 @@
 #include "command.h"
 #include "dataset_config.h"
 #include "localize_dds.h"
+#include "localize_output.h"
 #include "localize_truth.h"
 
 namespace radarslam::cli {
@@ -141,9 +142,12 @@ int runLocalize(int argc, char** argv) {
   const bool side_file = !isSpecialFile(followSymlinks(out));
   fs::path side_path = out;
   side_path += ".csv";
+  fs::path boreas_path = out;
+  boreas_path += ".boreas.txt";
   if (side_file) {
-    if (!from_dds) checkNoOverlap(dir, side_path);
+    if (!from_dds) checkNoOverlap(dir, side_path), checkNoOverlap(dir, boreas_path);
     checkFileOutput(side_path);
+    checkFileOutput(boreas_path);
   }
   if (eval_arg.isSet()) {
     checkNoOverlap(map_dir, eval_arg.getValue());
@@ -244,7 +248,9 @@ int runLocalize(int argc, char** argv) {
   side << "# radarslam localize: map " << map_dir.string() << ", dataset " << dir.string() << "\n"
        << "# stamp_s scan status localised x y phi cov_xx cov_xy cov_xphi cov_yy cov_yphi cov_phiphi "
           "fit_score "
-          "inliers time_ms\n";
+          "inliers time_ms "
+       << kSideFileExtraHeader << "\n";
+  std::ostringstream boreas;
   char line[512];
   const auto truth = reader ? truthInMapFrame(map, *reader, dir) : std::nullopt;
   const bool gt = truth.has_value();
@@ -290,12 +296,13 @@ int runLocalize(int argc, char** argv) {
     total.global += r.timing.global;
     const auto& c = r.covariance;
     std::snprintf(line, sizeof line,
-                  "%s %zu %s %d %.4f %.4f %.6f %.6g %.6g %.6g %.6g %.6g %.6g %.4f %zu %.2f\n",
+                  "%s %zu %s %d %.4f %.4f %.6f %.6g %.6g %.6g %.6g %.6g %.6g %.4f %zu %.2f ",
                   formatStampSeconds(r.stamp).c_str(), f.index, toString(r.status), r.localised ? 1 : 0,
                   r.pose.x, r.pose.y, r.pose.phi, c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2),
                   r.fit_score, r.inliers, r.timing.total());
-    side << line;
+    side << line << sideFileExtra(map, r) << "\n";
     if (r.localised) {
+      if (r.keyframe >= 0) boreas << boreasRow(map, r);
       ++localised;
       fixes += r.status == LocalizationStatus::GlobalFix;
       if (first_fix < 0) first_fix = static_cast<long>(f.index - first);
@@ -339,7 +346,7 @@ int runLocalize(int argc, char** argv) {
                      from_dds ? "no scan received on " + *dds_opts.scan_topic + " within --dds-timeout"
                               : std::string("no scan could be read"));
   writeTumTrajectory(out, poses);
-  if (side_file) writeTextAtomically(side_path, side.str());
+  if (side_file) writeTextAtomically(side_path, side.str()), writeTextAtomically(boreas_path, boreas.str());
 
   const double n = static_cast<double>(done);
   std::printf("localize summary\n");
@@ -391,8 +398,11 @@ int runLocalize(int argc, char** argv) {
                     "median_fit %.4f\nscans_per_s %.2f\n",
                     done, localised, 100.0 * localised / n, fixes, first_fix, median(fits), n / elapsed);
       writeTextAtomically(eval_dir / "summary.txt", std::string(buf).append(s.str()));
+      // The truth in the map frame: GT of `radarslam eval --localization FILE.csv E/truth_map.tum`.
+      writeTumTrajectory(eval_dir / "truth_map.tum", truth->truth);
       std::cout << "  eval           " << (eval_dir / "errors.csv").string() << ", "
-                << (eval_dir / "summary.txt").string() << "\n";
+                << (eval_dir / "summary.txt").string() << ", " << (eval_dir / "truth_map.tum").string()
+                << "\n";
     }
   } else {
     std::printf(

@@ -64,12 +64,30 @@ TEST(LocalizeCli, SecondTraversalOfSimulatedWorld) {
   ASSERT_EQ(side.size(), 120u) << log;
   std::size_t localised = 0;
   for (const auto& r : side) {
-    ASSERT_EQ(r.size(), 16u);
+    ASSERT_EQ(r.size(), 28u);
     localised += r[3] == "1";
     EXPECT_EQ(r[3] == "1", r[2] != "lost");
   }
   EXPECT_GE(localised, 108u) << log;  // >= 90 %
   EXPECT_EQ(rows(poses).size(), localised);
+  // Boreas localisation rows: stamps, 3x4 T_keyframe_scan, 6x6 inverse covariance; one per pose.
+  const auto boreas = rows(poses.string() + ".boreas.txt");
+  ASSERT_EQ(boreas.size(), localised);
+  for (const auto& r : boreas) {
+    ASSERT_EQ(r.size(), 50u);
+    EXPECT_GT(std::stod(r[14]), 0);              // information of x
+    EXPECT_EQ(std::stod(r[14 + 2 * 6 + 2]), 0);  // no information on z
+  }
+  // eval --localization against the truth in the map frame.
+  ASSERT_EQ(run("eval --localization '" + poses.string() + ".csv' '" +
+                    (d / "eval" / "truth_map.tum").string() + "' --json '" + (d / "loc.json").string() + "'",
+                d / "evalloc.log"),
+            0)
+      << slurp(d / "evalloc.log");
+  const std::string json = slurp(d / "loc.json");
+  EXPECT_NE(json.find("\"nees_mean\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"trusted_far_off\": 0,"), std::string::npos) << json;
+  EXPECT_NE(slurp(d / "evalloc.log").find("RMSE"), std::string::npos);
   // The first fix comes within the first 3 scans.
   EXPECT_TRUE(side[0][3] == "1" || side[1][3] == "1" || side[2][3] == "1") << log;
 

@@ -28,6 +28,7 @@ void loadParams(const YamlParams& yaml, LocalizerParams& p) {
   loadParams(yaml.section("peak_cloud"), p.peaks);
   loadParams(yaml.section("global"), p.global);
   loadParams(yaml.section("tracker"), p.tracker);
+  loadParams(yaml.section("integrity"), p.integrity);
 }
 
 const char* toString(LocalizationStatus s) {
@@ -36,6 +37,8 @@ const char* toString(LocalizationStatus s) {
       return "global_fix";
     case LocalizationStatus::Tracking:
       return "tracking";
+    case LocalizationStatus::Degraded:
+      return "degraded";
     case LocalizationStatus::Lost:
       return "lost";
   }
@@ -50,6 +53,16 @@ double msSince(Clock::time_point t0) {
 mrpt::math::TPose2D compose(const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b) {
   return (mrpt::poses::CPose2D(a) + mrpt::poses::CPose2D(b)).asTPose();
 }
+long nearestKeyframe(const KeyframeMap& map, const mrpt::math::TPose2D& p) {
+  long best = -1;
+  double best_d2 = 0;
+  for (std::size_t k = 0; k < map.keyframes.size(); ++k) {
+    const double dx = map.keyframes[k].pose.x - p.x, dy = map.keyframes[k].pose.y - p.y;
+    const double d2 = dx * dx + dy * dy;
+    if (best < 0 || d2 < best_d2) best = static_cast<long>(k), best_d2 = d2;
+  }
+  return best;
+}
 }  // namespace
 
 struct Localizer::Impl {
@@ -61,7 +74,11 @@ struct Localizer::Impl {
   MapTracker tracker;
   bool have_pose = false;  ///< pose is trusted or dead-reckoned from a trusted one
   mrpt::math::TPose2D pose;
-  int missed = 0;       ///< rejected registrations in a row
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();  ///< of pose
+  double chi2_threshold;                          ///< chi^2(3) quantile of integrity.chi2_probability
+  FitMonitor fits;
+  MotionWindow window;
+  int missed = 0;       ///< rejected registrations (failed checks) in a row
   long lost_scans = 0;  ///< scans since global localisation became necessary
   std::size_t fixes = 0;
   std::optional<mrpt::math::TPose2D> pending;  ///< last unconfirmed fix, moved with the odometry
@@ -73,7 +90,16 @@ struct Localizer::Impl {
         params(p),
         odometry(op),
         global(map, p.global),
-        tracker(map, p.tracker) {}
+        tracker(map, p.tracker),
+        chi2_threshold(chi2Quantile3(p.integrity.chi2_probability)),
+        fits(p.integrity),
+        window(p.integrity) {}
+  void loseTrack() {
+    have_pose = false;
+    lost_scans = 0;
+    fits.clear();
+    window.clear();
+  }
 };
 
 Localizer::Localizer(const KeyframeMap& map, const OdometryParams& odometry, const LocalizerParams& params)
@@ -101,19 +127,25 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
   if (m.params.motion_compensation) compensateMotion(cloud, scan, step.velocity);
   res.timing.cloud = cloud_ms + msSince(t0);
 
-  auto accept = [&](const TrackResult& tr, LocalizationStatus status) {
-    m.pose = tr.icp.pose;
+  auto report = [&](const mrpt::math::TPose2D& pose, const Eigen::Matrix3d& cov, LocalizationStatus status) {
+    m.pose = pose;
+    m.cov = cov;
     m.have_pose = true;
-    m.missed = 0;
     res.localised = true;
-    res.pose = tr.icp.pose;
-    res.covariance = tr.icp.covariance;
+    res.pose = pose;
+    res.covariance = cov;
+    res.status = status;
+    res.keyframe = nearestKeyframe(m.map, pose);
+  };
+  auto accept = [&](const TrackResult& tr, LocalizationStatus status) {
+    m.missed = 0;
+    report(tr.icp.pose, tr.icp.covariance, status);
     res.fit_score = tr.icp.fit_score;
     res.inliers = tr.icp.inliers;
-    res.status = status;
   };
+  const IntegrityParams& ip = m.params.integrity;
 
-  if (m.have_pose) {
+  if (m.have_pose && !ip.enabled) {  // the tracker's own tests only (before issue #14)
     t0 = Clock::now();
     const mrpt::math::TPose2D predicted = compose(m.pose, step.motion);
     const TrackResult tr = m.tracker.track(cloud, predicted);
@@ -125,10 +157,59 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     res.fit_score = tr.icp.fit_score;
     res.inliers = tr.icp.inliers;
     m.pose = predicted;  // dead reckoning, never reported
-    if (++m.missed > m.params.max_missed_scans) {
-      m.have_pose = false;
-      m.lost_scans = 0;
+    if (++m.missed > m.params.max_missed_scans) m.loseTrack();
+    return res;
+  }
+
+  if (m.have_pose) {
+    t0 = Clock::now();
+    // Prediction with the odometry noise model; a lost/re-initialised odometry gives no motion
+    // information (a huge variance), so the map registration alone decides.
+    const bool odo_ok = step.status == TrackingStatus::Tracking;
+    const Eigen::Matrix3d odo_cov = odo_ok ? odometryCovariance(step.motion, ip)
+                                           : Eigen::Vector3d(1e4, 1e4, 10.0).asDiagonal().toDenseMatrix();
+    const mrpt::math::TPose2D predicted = compose(m.pose, step.motion);
+    const Eigen::Matrix3d predicted_cov = composeCovariance(m.pose, m.cov, step.motion, odo_cov);
+    m.window.addMotion(step.motion, odo_cov);
+    const TrackResult tr = m.tracker.track(cloud, predicted);
+    res.fit_score = tr.icp.fit_score;
+    res.inliers = tr.icp.inliers;
+    const IcpResult& r = tr.icp;
+    // The checks, in order; the first failure is reported in res.check.
+    if (!tr.accepted && !tr.degenerate) {
+      res.check = "registration";  // tr.reason has the details
+    } else if (mahalanobis2(poseDifference(predicted, r.pose), predicted_cov + r.covariance) >
+               m.chi2_threshold) {
+      res.check = "odometry";
+    } else if (m.fits.drop(r.fit_score)) {
+      res.check = "fit";
+    } else if (m.window.test(r.pose, r.covariance) > m.chi2_threshold) {
+      res.check = "window";
     }
+    if (res.check.empty()) {
+      m.missed = 0;
+      m.fits.add(r.fit_score);
+      if (tr.degenerate || xyCondition(r.covariance) > ip.max_condition) {
+        // A weak direction: the odometry prediction fills it.
+        mrpt::math::TPose2D fused;
+        Eigen::Matrix3d fused_cov;
+        fusePoses(predicted, predicted_cov, r.pose, r.covariance, fused, fused_cov);
+        report(fused, fused_cov, LocalizationStatus::Degraded);
+        res.check = "degenerate";
+      } else {
+        report(r.pose, r.covariance, LocalizationStatus::Tracking);
+      }
+      m.window.addPose(true, res.pose, res.covariance);
+    } else {
+      // Dead reckoning with the odometry, reported as degraded while its covariance stays bounded.
+      m.window.addPose(false, predicted, predicted_cov);
+      if (++m.missed > ip.max_failures || position3Sigma(predicted_cov) > ip.max_position_3sigma_m) {
+        m.loseTrack();
+      } else {
+        report(predicted, predicted_cov, LocalizationStatus::Degraded);
+      }
+    }
+    res.timing.tracking = msSince(t0);
     return res;
   }
 
@@ -154,6 +235,10 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     m.pending = p;
     if (m.pending_count >= m.params.confirm_fixes) {
       accept(*refined, LocalizationStatus::GlobalFix);
+      m.fits.clear();
+      m.window.clear();
+      m.window.addMotion(step.motion, Eigen::Matrix3d::Zero());
+      m.window.addPose(true, res.pose, res.covariance);
       ++m.fixes;
       m.pending.reset();
       m.pending_count = 0;

@@ -54,6 +54,7 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
     std::snprintf(buf, sizeof buf, "jump %.2f m / %.1f deg from the prediction", jump, jump_deg);
   } else if (!(sigma_xy <= params_.max_position_sigma_m)) {
     std::snprintf(buf, sizeof buf, "position sigma %.2f m > %.2f m", sigma_xy, params_.max_position_sigma_m);
+    out.degenerate = true;
   } else {
     out.accepted = true;
     return out;

@@ -8,19 +8,24 @@
 //                    refined and checked by a MapTracker registration from it, reported once
 //                    confirm_fixes consecutive fixes agree through the odometry -> GlobalFix
 //     localised:     MapTracker registration from last pose (+) T_prev_cur -> Tracking
-//   A rejected registration reports the scan as not localised (Lost) and keeps dead reckoning with
-//   odometry for up to max_missed_scans scans, still trying to register from the prediction; after
-//   that global localisation runs again. A pose is only reported when a test accepted it.
+//   Every tracked registration goes through the integrity checks (reloc/integrity.h): passed ->
+//   Tracking; a degenerate one fused with the odometry prediction -> Degraded; a failed check (or a
+//   rejected registration) -> the odometry prediction with its growing covariance, Degraded, until
+//   integrity.max_failures or the 3-sigma bound -> Lost (no pose) and global localisation again.
+//   (integrity.enabled = false: a rejected registration is Lost, dead-reckoned silently for up to
+//   max_missed_scans scans.)
 #include <mrpt/math/TPose2D.h>
 #include <Eigen/Core>
 
 #include <memory>
+#include <string>
 
 #include "radarslam/core/time.h"
 #include "radarslam/frontend/odometry_params.h"
 #include "radarslam/obs/CObservationRadarScan.h"
 #include "radarslam/radar/peak_cloud.h"
 #include "radarslam/reloc/global_localizer.h"
+#include "radarslam/reloc/integrity.h"
 #include "radarslam/reloc/map_tracker.h"
 
 namespace radarslam {
@@ -32,8 +37,10 @@ struct LocalizerParams {
   bool motion_compensation = true;  ///< compensate the scan's peak cloud with the odometry velocity
   GlobalLocalizerParams global;
   MapTrackerParams tracker;
-  int max_missed_scans =
-      3;  ///< rejected registrations in a row before global search again; valid [0, 1000000]
+  IntegrityParams integrity;  ///< checks of every tracked pose (reloc/integrity.h)
+  /// Only with integrity.enabled = false: rejected registrations in a row before global search
+  /// again (with integrity checks: integrity.max_failures); valid [0, 1000000].
+  int max_missed_scans = 3;
   int global_retry_interval = 1;  ///< while lost, try global localisation every N scans; valid [1, 1000000]
   /// > 0: the map's keyframe clouds are raw (not motion compensated, e.g. map-synth maps) and are
   /// compensated at start-up assuming this sweep period (reloc/map_motion.h). 0: used as stored.
@@ -48,10 +55,13 @@ struct LocalizerParams {
 
 /// Overrides from the `localization:` section of `yaml`: motion_compensation, max_missed_scans,
 /// global_retry_interval, map_sweep_period_s, confirm_fixes, confirm_distance_m, confirm_angle_deg
-/// and the sections peak_cloud:, global:, tracker:.
+/// and the sections peak_cloud:, global:, tracker:, integrity:.
 void loadParams(const YamlParams& yaml, LocalizerParams& params);
 
-enum class LocalizationStatus { GlobalFix, Tracking, Lost };
+/// GlobalFix / Tracking: a registration that passed every check. Degraded: a pose with an inflated
+/// covariance (fused with the odometry along a weak direction, or the odometry prediction after a
+/// failed check). Lost: no pose.
+enum class LocalizationStatus { GlobalFix, Tracking, Degraded, Lost };
 const char* toString(LocalizationStatus s);
 
 /// Wall time of each stage, milliseconds. The peak cloud (`cloud`) is extracted on a second thread
@@ -69,6 +79,8 @@ struct LocalizationResult {
   double fit_score = 0;                                  ///< inlier ratio of the registration
   std::size_t inliers = 0;
   LocalizationStatus status = LocalizationStatus::Lost;
+  long keyframe = -1;  ///< index in map.keyframes of the keyframe nearest the pose (if localised)
+  std::string check;   ///< the integrity check that failed (empty if none)
   LocalizationTiming timing;
 };
 

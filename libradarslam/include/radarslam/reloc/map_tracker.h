@@ -34,6 +34,9 @@ void loadParams(const YamlParams& yaml, MapTrackerParams& params);
 struct TrackResult {
   bool accepted = false;
   std::string reason;  ///< why not (empty when accepted)
+  /// Rejected only by max_position_sigma_m (a weak direction, e.g. a corridor): every other test
+  /// passed, so the registration can still be fused with a prediction (reloc/integrity.h).
+  bool degenerate = false;
   IcpResult icp;
   bool submap_rebuilt = false;
 };

@@ -1,0 +1,119 @@
+#pragma once
+// Integrity monitoring of map-based localisation (issue #14): checks that do not trust the map
+// matcher alone decide whether a registered pose is reported as `tracking`, `degraded` (a pose
+// with an honestly inflated covariance) or dropped (`lost`, global localisation again).
+//
+//  (a) odometry agreement: the innovation between the registered pose and the prediction
+//      (previous pose (+) radar-odometry motion) is chi^2-tested with the combined covariance of the
+//      prediction (previous pose covariance and the odometry noise model below) and the
+//      registration; threshold = the chi^2(3) quantile of `chi2_probability` (no tuned constant);
+//  (b) fit score against its running statistics: fit < median - fit_drop_sigmas * robust sigma
+//      (1.4826 MAD, at least min_fit_sigma) of the last fit_history accepted scans;
+//  (c) degeneracy: the xy covariance of the registration has a weak direction (eigenvalue ratio >
+//      max_condition, e.g. a corridor) -> the registration is fused with the prediction
+//      (information filter: the odometry fills the weak direction), `degraded`;
+//  (e) consistency with the previous poses: the map-relative motion over the last window_scans
+//      accepted scans against the odometry over the same scans, chi^2-tested likewise (a slow walk
+//      of the matcher that each single step hides).
+// A failed check: the pose is the odometry prediction, its covariance the prediction's (it grows
+// with every scan), status `degraded`; past max_failures consecutive failures or 3 sigma position
+// > max_position_3sigma_m: `lost`.
+#include <mrpt/math/TPose2D.h>
+#include <Eigen/Core>
+
+#include <deque>
+
+namespace radarslam {
+
+class YamlParams;
+
+struct IntegrityParams {
+  bool enabled = true;  ///< false: the tracker's own tests only (as before issue #14)
+  /// Odometry noise per scan (1 sigma, independent per scan): position sigma = floor + per_m * d,
+  /// heading sigma = floor + per_rad * |dphi| + per_m * d (d = distance travelled in the scan).
+  /// Valid: >= 0 each; defaults cover the radar odometry's drift (~2 % / 0.1 deg per m, docs).
+  double odom_sigma_per_m = 0.02;
+  double odom_sigma_floor_m = 0.05;
+  double odom_sigma_rad_per_rad = 0.05;
+  double odom_sigma_rad_per_m = 0.002;
+  double odom_sigma_floor_rad = 0.005;
+  double chi2_probability = 0.999;     ///< (0.5, 1): chi^2(3) quantile of the innovation tests
+  int window_scans = 10;               ///< >= 2: window of check (e); 0 disables it
+  int fit_history = 30;                ///< >= 5: accepted fit scores kept for check (b)
+  double fit_drop_sigmas = 4.0;        ///< > 0: robust sigmas below the median that fail check (b)
+  double min_fit_sigma = 0.03;         ///< > 0: floor of the robust fit sigma
+  double max_condition = 100.0;        ///< > 1: xy covariance eigenvalue ratio that is degenerate
+  int max_failures = 5;                ///< >= 0: consecutive failed scans reported degraded, then lost
+  double max_position_3sigma_m = 5.0;  ///< > 0: 3 sigma (largest xy axis) beyond which: lost
+};
+
+/// Overrides from the keys of the `integrity:` section (names as the fields).
+void loadParams(const YamlParams& yaml, IntegrityParams& params);
+
+/// The chi^2 quantile with 3 degrees of freedom: P(X <= q) = p, p in (0, 1).
+double chi2Quantile3(double p);
+
+/// Covariance of the odometry motion `motion` (T_prev_cur) under the noise model, in its frame.
+Eigen::Matrix3d odometryCovariance(const mrpt::math::TPose2D& motion, const IntegrityParams& params);
+
+/// a (+) b with the first-order covariance (a's in the map frame, b's in a's frame).
+Eigen::Matrix3d composeCovariance(const mrpt::math::TPose2D& a, const Eigen::Matrix3d& cov_a,
+                                  const mrpt::math::TPose2D& b, const Eigen::Matrix3d& cov_b);
+
+/// (x, y, phi) of b - a in the map frame, phi wrapped to (-pi, pi].
+Eigen::Vector3d poseDifference(const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b);
+
+/// Squared Mahalanobis norm v^T S^-1 v (S symmetric positive definite, else +inf).
+double mahalanobis2(const Eigen::Vector3d& v, const Eigen::Matrix3d& s);
+
+/// 3 sigma of the largest axis of the xy covariance.
+double position3Sigma(const Eigen::Matrix3d& cov);
+
+/// Ratio of the largest to the smallest eigenvalue of the xy covariance.
+double xyCondition(const Eigen::Matrix3d& cov);
+
+/// Information-filter fusion of two estimates of the same pose (map frame).
+void fusePoses(const mrpt::math::TPose2D& a, const Eigen::Matrix3d& cov_a, const mrpt::math::TPose2D& b,
+               const Eigen::Matrix3d& cov_b, mrpt::math::TPose2D& out, Eigen::Matrix3d& cov_out);
+
+/// Check (b): running median and MAD of accepted fit scores.
+class FitMonitor {
+ public:
+  explicit FitMonitor(const IntegrityParams& params) : params_(params) {}
+  /// True when `fit` is a drop well below the recent scores (needs fit_history / 2 scores).
+  bool drop(double fit) const;
+  void add(double fit);
+  void clear() { fits_.clear(); }
+
+ private:
+  IntegrityParams params_;
+  std::deque<double> fits_;
+};
+
+/// Check (e): odometry motions and reported poses of the recent scans.
+class MotionWindow {
+ public:
+  explicit MotionWindow(const IntegrityParams& params) : params_(params) {}
+  /// Adds the scan's odometry motion (before the check of the scan).
+  void addMotion(const mrpt::math::TPose2D& motion, const Eigen::Matrix3d& cov);
+  /// Squared Mahalanobis norm of (map motion since the oldest registered pose in the window) against
+  /// the odometry over the same scans, for a registration `pose`, `cov` of the current scan; < 0
+  /// when the window holds no registered pose.
+  double test(const mrpt::math::TPose2D& pose, const Eigen::Matrix3d& cov) const;
+  /// Records the current scan's outcome: a registration that passed the checks or not.
+  void addPose(bool registered, const mrpt::math::TPose2D& pose, const Eigen::Matrix3d& cov);
+  void clear() { entries_.clear(); }
+
+ private:
+  struct Entry {
+    mrpt::math::TPose2D motion;  ///< odometry from the previous scan to this one
+    Eigen::Matrix3d motion_cov;
+    bool registered = false;
+    mrpt::math::TPose2D pose;
+    Eigen::Matrix3d cov;
+  };
+  IntegrityParams params_;
+  std::deque<Entry> entries_;
+};
+
+}  // namespace radarslam

@@ -1,0 +1,168 @@
+// Integrity monitoring (issue #14), end to end on simulated drives: a kidnapped vehicle (the scans
+// of ~130 m of the route cut out: the vehicle jumps ahead between two scans) and a drive that leaves the
+// mapped area and comes back. No scan may be reported `tracking`/`global_fix` more than 2 m or 2 deg off, and
+// a new trusted fix must come within a bounded number of scans after the vehicle is back in the map. With
+// `integrity: {enabled: false}` (the tracker's own tests only) these fail (docs/localization.md).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "temp_dir.h"
+
+namespace radarslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+int run(const std::string& args, const fs::path& log) {
+  const std::string cmd = std::string(RADARSLAM_CLI) + " " + args + " > '" + log.string() + "' 2>&1";
+  return std::system(cmd.c_str());
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::vector<std::vector<std::string>> rows(const fs::path& p) {
+  std::vector<std::vector<std::string>> out;
+  std::ifstream f(p);
+  for (std::string line; std::getline(f, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ss(line);
+    std::vector<std::string> cols;
+    for (std::string c; ss >> c;) cols.push_back(c);
+    out.push_back(cols);
+  }
+  return out;
+}
+
+/// Scan file stamps (us) of a simulated dataset, in order.
+std::vector<long long> scanStamps(const fs::path& dir) {
+  std::vector<long long> out;
+  std::ifstream f(dir / "radar.timestamps");
+  for (long long t = 0, valid = 0; f >> t >> valid;) out.push_back(t);
+  return out;
+}
+
+/// A copy of `src` without the scans [skip_from, skip_to) (the ground truth, by time, kept whole).
+/// (Scan images carry their azimuth times, so scans cannot be moved in time: a kidnapping is a jump.)
+void dropScans(const fs::path& src, const fs::path& dst, std::size_t skip_from, std::size_t skip_to) {
+  const auto stamps = scanStamps(src);
+  fs::create_directories(dst / "radar");
+  fs::copy(src / "gt", dst / "gt", fs::copy_options::recursive);
+  std::ofstream ts(dst / "radar.timestamps");
+  for (std::size_t k = 0; k < stamps.size(); ++k) {
+    if (k >= skip_from && k < skip_to) continue;
+    const std::string name = std::to_string(stamps[k]) + ".png";
+    fs::copy_file(src / "radar" / name, dst / "radar" / name);
+    ts << stamps[k] << " 1\n";
+  }
+}
+
+constexpr std::size_t kScans = 130;
+
+class LocalizeIntegrity : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    tmp_ = new test::TempDir;
+    const fs::path d = tmp_->path();
+    const std::string n = " --scans " + std::to_string(kScans);
+    ASSERT_EQ(run("simulate '" + (d / "t1").string() + "'" + n, d / "sim1.log"), 0) << slurp(d / "sim1.log");
+    ASSERT_EQ(run("simulate '" + (d / "t2").string() + "'" + n + " --traversal 2", d / "sim2.log"), 0)
+        << slurp(d / "sim2.log");
+  }
+  static void TearDownTestSuite() { delete tmp_; }
+
+  /// Localises `dataset` in `map`; the rows of errors.csv (stamp scan status pos_err head_err ...) and
+  /// the side file.
+  static void localize(const fs::path& map, const fs::path& dataset, const std::string& name,
+                       std::size_t scans, std::vector<std::vector<std::string>>& errors,
+                       std::vector<std::vector<std::string>>& side, const std::string& config = "") {
+    const fs::path d = tmp_->path();
+    const fs::path poses = d / (name + ".tum");
+    ASSERT_EQ(run("localize '" + map.string() + "' '" + dataset.string() + "' -o '" + poses.string() +
+                      "' --eval-dir '" + (d / (name + "_eval")).string() + "' -q" +
+                      (config.empty() ? "" : " --config '" + config + "'"),
+                  d / (name + ".log")),
+              0)
+        << slurp(d / (name + ".log"));
+    errors = rows(d / (name + "_eval") / "errors.csv");
+    side = rows(poses.string() + ".csv");
+    ASSERT_EQ(side.size(), scans);
+  }
+
+  static test::TempDir* tmp_;
+};
+test::TempDir* LocalizeIntegrity::tmp_ = nullptr;
+
+bool trusted(const std::string& status) { return status == "tracking" || status == "global_fix"; }
+
+/// Every trusted scan within 2 m / 2 deg; returns the scan indices of trusted scans within 1 m.
+std::vector<std::size_t> checkTrusted(const std::vector<std::vector<std::string>>& errors) {
+  std::vector<std::size_t> good;
+  for (const auto& r : errors) {
+    if (!trusted(r[2])) continue;
+    const double e = std::stod(r[3]), h = std::stod(r[4]);
+    EXPECT_LE(e, 2.0) << "scan " << r[1] << " " << r[2] << " is " << e << " m off";
+    EXPECT_LE(h, 2.0) << "scan " << r[1] << " " << r[2] << " is " << h << " deg off";
+    if (e <= 1.0 && h <= 1.0) good.push_back(std::stoul(r[1]));
+  }
+  return good;
+}
+
+TEST_F(LocalizeIntegrity, KidnappedVehicleIsNeverTrustedWhileWrong) {
+  const fs::path d = tmp_->path();
+  ASSERT_EQ(run("map-synth '" + (d / "t1").string() + "' -o '" + (d / "map").string() + "'", d / "synth.log"),
+            0)
+      << slurp(d / "synth.log");
+  // Scans 0-44, then from 95 on: the vehicle is carried ~130 m further along the route.
+  dropScans(d / "t2", d / "kidnap", 45, 95);
+  std::vector<std::vector<std::string>> errors, side;
+  // config/oxford.yaml's odometry and a self-trusting tracker; RADARSLAM_TEST_NO_INTEGRITY=1 turns
+  // the checks off (to see this test fail without them).
+  const fs::path config = d / "self_trusting.yaml";
+  {
+    std::ofstream c(config);
+    c << slurp(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml")
+      << "localization:\n  map_sweep_period_s: 0.25\n  integrity:\n    enabled: "
+      << (std::getenv("RADARSLAM_TEST_NO_INTEGRITY") ? "false" : "true")
+      << "\n  tracker:\n    min_fit_score: 0.1\n    min_inliers: 20\n    max_rms_m: 1.0\n"
+         "    max_jump_m: 10.0\n    max_jump_deg: 20.0\n    max_position_sigma_m: 5.0\n";
+  }
+  localize(d / "map", d / "kidnap", "kidnap", kScans - 50, errors, side, config.string());
+  const auto good = checkTrusted(errors);
+  // A correct trusted pose within 15 scans of the kidnapping (scan 45 of the cut dataset).
+  bool found = false;
+  for (const std::size_t s : good) found = found || (s >= 45 && s < 60);
+  EXPECT_TRUE(found) << "no correct trusted pose within 15 scans after the kidnapping";
+}
+
+TEST_F(LocalizeIntegrity, DriveOutOfTheMapAndBack) {
+  const fs::path d = tmp_->path();
+  // The map lacks traversal 1's scans 40-99 (~150 m of road).
+  dropScans(d / "t1", d / "t1_gap", 40, 100);
+  ASSERT_EQ(run("map-synth '" + (d / "t1_gap").string() + "' -o '" + (d / "map_gap").string() + "'",
+                d / "synth_gap.log"),
+            0)
+      << slurp(d / "synth_gap.log");
+  std::vector<std::vector<std::string>> errors, side;
+  localize(d / "map_gap", d / "t2", "gap", kScans, errors, side);
+  const auto good = checkTrusted(errors);
+  // Back in the map from about scan 100: a correct trusted pose within 20 scans.
+  bool found = false;
+  for (const std::size_t s : good) found = found || (s >= 100 && s < 120);
+  EXPECT_TRUE(found) << "no correct trusted pose after returning into the map";
+}
+
+}  // namespace
+}  // namespace radarslam
