@@ -38,6 +38,7 @@ SECTIONS = [
     ("backend/pose_graph.cpp", None, "yaml", "PoseGraphParams", ["slam.pose_graph"]),
     ("reloc/localizer.cpp", None, "yaml", "LocalizerParams", ["localization"]),
     ("reloc/global_localizer.cpp", None, "yaml", "GlobalLocalizerParams", ["localization.global"]),
+    ("reloc/integrity.cpp", None, "yaml", "IntegrityParams", ["localization.integrity"]),
     ("reloc/map_tracker.cpp", None, "yaml", "MapTrackerParams", ["localization.tracker"]),
     ("reloc/submap_icp.cpp", "SubmapParams", "yaml", "SubmapParams", ["localization.tracker.submap"]),
     ("reloc/submap_icp.cpp", "IcpParams", "yaml", "IcpParams", ["localization.tracker.icp"]),
