@@ -272,7 +272,8 @@ TEST(HostileConfigPhysical, OctomapOfTooManyVoxelsIsRefusedWithItsSize) {
   r = runCli(
       "export " + quoted(map) + " --octomap --resolution 0.005 --verbosity WARN -o " + quoted(tmp / "out"),
       tmp);
-  expectOneLineError(r, {"voxels", "--resolution"});
+  expectOneLineError(
+      r, {"cells is too large", "--resolution"});  // the grid_columns fill is bounded by its raster
   EXPECT_FALSE(fs::exists(tmp / "out" / "map.bt"));
 }
 
