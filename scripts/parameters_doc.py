@@ -52,6 +52,9 @@ SECTIONS = [
      ["(library: KeyframeInsertionParams)"]),
 ]
 
+# Nested parameter structs a loader fills through a member: (struct, member) -> member's struct.
+NESTED = {("LoopVerifierParams", "information"): "AlignmentInformationParams"}
+
 FILES = [
     ("Odometry and SLAM: config/<sensor>.yaml (`radarslam odometry`, `map`, `localize`)",
      lambda paths: not paths[0].startswith(("localization", "(", "world", "route", "radar", "physics"))),
@@ -118,11 +121,12 @@ def main():
         for m in re.finditer(r"\b" + var + r"\.get\(\"(\w+)\",\s*([^;]*)\);", body):
             key, rest = m.group(1), re.sub(r"\s+", " ", m.group(2))
             parts = [p.strip() for p in re.split(r",(?![^(]*\))", rest)]
-            field = parts[0].split(".")[-1]
+            path = parts[0].split(".")
+            field = path[-1]
             rng = range_text(parts[1]) if len(parts) > 1 else "-"
             if len(parts) > 2:
                 rng += " each, at most %s values" % parts[2]
-            fields = defaults.get(struct, {})
+            fields = defaults.get(NESTED.get((struct, path[-2]), struct) if len(path) > 2 else struct, {})
             name = field if field in fields else key if key in fields else key.replace("kitti_", "")
             if name == "step_frames" or name == "lengths_m":
                 default, comment = defaults["KittiParams"].get(name, ("?", ""))

@@ -4,11 +4,13 @@
 // and a summary; with ground truth, the drift and loop-closure metrics.
 #include <unistd.h>
 
+#include <Eigen/LU>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -28,12 +30,14 @@
 #include <radarslam/map/map_exports.h>
 #include <radarslam/map/map_io.h>
 #include <radarslam/slam/loop_evaluation.h>
+#include <radarslam/slam/map_consistency.h>
 #include <radarslam/slam/radar_slam.h>
 
 #include "cli_common.h"
 #include "command.h"
 #include "dataset_config.h"
 #include "progress_line.h"
+#include "slam_quality_json.h"
 
 namespace radarslam::cli {
 namespace {
@@ -53,11 +57,17 @@ double peakRssMiB() {
 std::string loopsCsv(const std::vector<LoopRecord>& loops) {
   std::ostringstream s;
   s << "# query_keyframe,match_keyframe,descriptor_distance,accepted,rejected_by_graph,x,y,phi,inlier_ratio,"
-       "ambiguity_ratio,reason\n";
-  for (const auto& l : loops)
+       "ambiguity_ratio,sigma_x,sigma_y,sigma_phi,reason\n";
+  for (const auto& l : loops) {
+    // Marginal sigmas of the verifier's information (inf where it constrains nothing).
+    Eigen::Vector3d sigma = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    if (const Eigen::FullPivLU<Eigen::Matrix3d> lu(l.information); lu.isInvertible())
+      sigma = lu.inverse().diagonal().cwiseMax(0).cwiseSqrt();
     s << l.query << ',' << l.match << ',' << l.descriptor_distance << ',' << l.accepted << ','
       << l.rejected_by_graph << ',' << l.relative.x << ',' << l.relative.y << ',' << l.relative.phi << ','
-      << l.inlier_ratio << ',' << l.ambiguity_ratio << ',' << l.reason << '\n';
+      << l.inlier_ratio << ',' << l.ambiguity_ratio << ',' << sigma.x() << ',' << sigma.y() << ','
+      << sigma.z() << ',' << l.reason << '\n';
+  }
   return s.str();
 }
 
@@ -195,14 +205,15 @@ int runMap(int argc, char** argv) {
   char buf[512];
 
   // The evaluation first: its report is one of the products saved with the map.
-  std::optional<eval::EvalReport> report;
-  std::string eval_text;
+  std::optional<eval::EvalReport> report, odometry_report;
+  std::string eval_text, quality_json;
   if (reader->hasGroundTruth()) {
     const Trajectory& gt = reader->groundTruth();
     const std::string gt_file = groundTruthFile(*reader).string();
     try {
       report = eval::evaluate(traj, gt, {}, "SLAM", dir.string());
-      const eval::EvalReport odo = eval::evaluate(odometry, gt, {}, "odometry", dir.string());
+      odometry_report = eval::evaluate(odometry, gt, {}, "odometry", dir.string());
+      const eval::EvalReport& odo = *odometry_report;
       std::snprintf(
           buf, sizeof buf,
           "  accuracy       SLAM %.2f %% / %.4f deg/m, ATE %.2f m RMSE (odometry only: %.2f %% / %.4f "
@@ -224,10 +235,20 @@ int runMap(int argc, char** argv) {
       std::snprintf(
           buf, sizeof buf,
           "  loop truth     recall %.2f (%zu of %zu keyframes with a true loop), %zu false accepted "
-          "(%zu left in the graph), max error of true loops %.2f m / %.2f deg\n",
+          "(%zu left in the graph), max error of true loops %.2f m / %.2f deg, information NEES mean %.1f "
+          "(%.0f %% within chi2(3) 95 %%)\n",
           le.recall, le.keyframes_with_loop_found, le.keyframes_with_true_loop, le.false_accepted,
-          le.false_in_graph, le.max_error_m, le.max_error_deg);
+          le.false_in_graph, le.max_error_m, le.max_error_deg, le.nees_mean, 100 * le.nees_within_95);
       eval_text += buf;
+      const MapConsistency mc = evaluateMapConsistency(map, gt);
+      std::snprintf(
+          buf, sizeof buf,
+          "  map truth      revisit pairs within 10 m: %.1f %% consistent (%zu of %zu within 0.3 m / "
+          "0.5 deg; median %.3f m, worst %.2f m / %.2f deg)\n",
+          100 * mc.revisits.fraction, mc.revisits.consistent, mc.revisits.pairs, mc.revisits.median_error_m,
+          mc.revisits.worst_error_m, mc.revisits.worst_error_deg);
+      eval_text += buf;
+      quality_json = slamQualityJson(*report, *odometry_report, le, mc);
       eval_text += "  evaluation     " + (map_dir / "eval" / "report.json").string() + " and plots in " +
                    (map_dir / "eval").string() + "\n";
     }
@@ -251,6 +272,7 @@ int runMap(int argc, char** argv) {
     if (report) {
       fs::create_directories(tmp / "eval");
       eval::writeJsonReport(tmp / "eval" / "report.json", *report);
+      if (!quality_json.empty()) writeTextAtomically(tmp / "eval" / "slam_quality.json", quality_json);
       eval::writePlots(tmp / "eval", *report);
     }
 

@@ -35,8 +35,10 @@ void loadParams(const YamlParams& yaml, LoopVerifierParams& p) {
   yaml.get("min_inlier_ratio", p.min_inlier_ratio, Range::closed(0, 1));
   yaml.get("max_rms_m", p.max_rms_m, Range::above(0, 100));
   yaml.get("min_inlier_sectors", p.min_inlier_sectors, Range::closed(0, 8));
-  yaml.get("min_sigma_m", p.min_sigma_m, Range::closed(0, 100));
-  yaml.get("information_scale", p.information_scale, Range::above(0, 1000000.0));
+  yaml.get("normal_radius_m", p.information.normal_radius_m, Range::above(0, 100));
+  yaml.get("linearity_ratio", p.information.linearity_ratio, Range::closed(1, 1e6));
+  yaml.get("correlation_length_m", p.information.correlation_length_m, Range::above(0, 100));
+  yaml.get("min_sigma_m", p.information.min_sigma_m, Range::closed(0, 100));
   // The Hough vote grid has (2 max_translation_m / vote_cell_m)^2 cells.
   if (p.max_translation_m / p.vote_cell_m > 2000)
     yaml.fail("vote_cell_m", "max_translation_m / vote_cell_m must be <= 2000 (vote grid size)");
@@ -286,13 +288,15 @@ LoopVerification verifyLoop(std::span<const RadarPoint> query, std::span<const R
 
   // 4. Acceptance on the full clouds.
   const PointIndex2D cfull(toVec(candidate));
-  Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+  std::vector<Vec2> aligned;
+  aligned.reserve(query.size());
   double sum2 = 0;
   std::array<bool, 8> sectors{};
   const double gate2 = params.inlier_distance_m * params.inlier_distance_m;
   for (const auto& p : query) {
     const Vec2 qp(p.x, p.y);
     const Vec2 tp = pose.apply(qp);
+    aligned.push_back(tp);
     const double d2 = cfull.nearest(tp).first;
     if (d2 >= gate2) continue;
     ++out.inliers;
@@ -300,18 +304,13 @@ LoopVerification verifyLoop(std::span<const RadarPoint> query, std::span<const R
     double bearing = std::atan2(qp.y(), qp.x());
     if (bearing < 0) bearing += 2 * M_PI;
     sectors[std::min<std::size_t>(7, static_cast<std::size_t>(bearing * 8 / (2 * M_PI)))] = true;
-    // d(R q + t)/d(x, y, th) = [I | (-(Rq)_y, (Rq)_x)]
-    const Vec2 rq = tp - Vec2(pose.x, pose.y);
-    Eigen::Matrix<double, 2, 3> J;
-    J << 1, 0, -rq.y(), 0, 1, rq.x();
-    jtj += J.transpose() * J;
   }
   out.inlier_sectors = static_cast<int>(std::count(sectors.begin(), sectors.end(), true));
   out.rms_m = out.inliers > 0 ? std::sqrt(sum2 / static_cast<double>(out.inliers)) : 0.0;
   out.inlier_ratio =
       static_cast<double>(out.inliers) / static_cast<double>(std::min(query.size(), candidate.size()));
-  const double sigma = std::max(out.rms_m, params.min_sigma_m);
-  out.information = params.information_scale * jtj / (sigma * sigma);
+  out.information = alignmentInformation(aligned, Vec2(pose.x, pose.y), cfull, params.inlier_distance_m,
+                                         params.information);
 
   if (out.ambiguity_ratio > params.max_ambiguity_ratio)
     out.reason = "ambiguous place (a distant alignment scores almost as well)";

@@ -1,9 +1,12 @@
 #include "loop_closer.h"
 
+#include <Eigen/Eigenvalues>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "graph_optimiser.h"
+#include "loop_uncertainty.h"
 #include "radarslam/core/log.h"
 #include "radarslam/loop/loop_verifier.h"
 
@@ -29,6 +32,7 @@ void LoopCloser::anchorSession(const TPose2D& implied, std::uint64_t query) {
   for (auto& mp : state_.points)
     if (mp.reference >= state_.session_first) mp.xy = transformPoint(correction, mp.xy);
   state_.anchored = true;
+  state_.anchor_keyframe = query;
   state_.anchor_travelled_m = state_.keyframes[query].travelled_m;
   ++state_.corrections;
   logger().logFmt(mrpt::system::LVL_INFO, "slam: new session anchored to the map at keyframe %llu",
@@ -51,7 +55,8 @@ void LoopCloser::process(std::uint64_t id) {
   }
   const auto& lc = params_.loop_closing;
   const bool gate = lc.drift_fraction > 0 && anchored;
-  // The drift bound between keyframe `m` and the query (see LoopClosingParams).
+  const bool chi2_gate = gate && lc.drift_gate_chi2 > 0;
+  // The linear drift bound between keyframe `m` and the query (see LoopClosingParams).
   auto driftBound = [&](std::uint64_t m) {
     // To a keyframe of a loaded map: the new session has drifted since it was anchored.
     const double d =
@@ -59,17 +64,40 @@ void LoopCloser::process(std::uint64_t id) {
     return std::pair(lc.drift_base_m + lc.drift_fraction * d,
                      (lc.drift_base_deg + lc.drift_deg_per_m * d) * M_PI / 180);
   };
+  std::optional<ChainCovariance> chain;
+  // The accumulated odometry covariance of the query in m's frame (chi2 gate). To a keyframe of a
+  // loaded map: the chain since the session was anchored, turned into m's frame.
+  auto chainCovarianceTo = [&](std::uint64_t m) -> Eigen::Matrix3d {
+    if (m >= state_.session_first) return chain->relativeTo(m);
+    const std::uint64_t a = state_.anchor_keyframe;
+    const double dphi = state_.keyframes[a].pose.phi - state_.keyframes[m].pose.phi;
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    R.topLeftCorner<2, 2>() << std::cos(dphi), -std::sin(dphi), std::sin(dphi), std::cos(dphi);
+    return R * chain->relativeTo(a) * R.transpose();
+  };
   bool optimise = false, closed = false;
   if ((params_.loop_closing.enabled || !anchored) && descriptors[0].size() > 0) {
     auto candidates =
         anchored ? detector_.query(descriptors, travelled) : map_detector_->query(descriptors, travelled);
+    if (chi2_gate && !candidates.empty()) {
+      std::lock_guard lock(state_.mutex);
+      std::uint64_t first = id;
+      for (const auto& c : candidates)
+        first = std::min(first, c.keyframe >= state_.session_first ? c.keyframe : state_.anchor_keyframe);
+      chain.emplace(state_, first, id, params_.odometry_edges);
+    }
     if (gate) {
       std::lock_guard lock(state_.mutex);
       const TPose2D& q = state_.keyframes[id].pose;
       std::erase_if(candidates, [&](const LoopCandidate& c) {
         const TPose2D& m = state_.keyframes[c.keyframe].pose;
-        return std::hypot(q.x - m.x, q.y - m.y) >
-               lc.verifier.max_translation_m + driftBound(c.keyframe).first;
+        double bound = driftBound(c.keyframe).first;
+        if (chi2_gate) {  // the chi2 ellipse's largest position semi-axis, plus the loop's own floor
+          const Eigen::Matrix2d pos = chainCovarianceTo(c.keyframe).topLeftCorner<2, 2>();
+          const double var = pos.allFinite() ? pos.eigenvalues().real().maxCoeff() : 1e18;
+          bound = std::sqrt(lc.drift_gate_chi2 * (var + lc.loop_sigma_xy_m * lc.loop_sigma_xy_m));
+        }
+        return std::hypot(q.x - m.x, q.y - m.y) > lc.verifier.max_translation_m + bound;
       });
     }
     const std::size_t n = std::min<std::size_t>(
@@ -90,6 +118,7 @@ void LoopCloser::process(std::uint64_t id) {
       rec.relative = v.relative_pose;
       rec.inlier_ratio = v.inlier_ratio;
       rec.ambiguity_ratio = v.ambiguity_ratio;
+      rec.information = loopInformation(v.information, lc);  // what the pose graph is given
       std::lock_guard lock(state_.mutex);
       ++state_.stats.loop_candidates;
       state_.records.push_back(rec);
@@ -98,7 +127,17 @@ void LoopCloser::process(std::uint64_t id) {
       const TPose2D& q = state_.keyframes[id].pose;
       const double dm = std::hypot(implied.x - q.x, implied.y - q.y);
       const double da = std::abs(std::remainder(implied.phi - q.phi, 2 * M_PI));
-      if (v.accepted && gate) {
+      const Eigen::Matrix3d& loop_information = rec.information;
+      if (v.accepted && chi2_gate) {
+        const TPose2D estimated = between(state_.keyframes[rec.match].pose, q);
+        const double d2 = correctionMahalanobis2(v.relative_pose, estimated, chainCovarianceTo(rec.match),
+                                                 loop_information);
+        if (d2 > lc.drift_gate_chi2) {
+          state_.records.back().accepted = false;
+          state_.records.back().reason =
+              "beyond the drift bound (" + std::to_string(dm) + " m, chi2 " + std::to_string(d2) + ")";
+        }
+      } else if (v.accepted && gate) {
         const auto [bound_m, bound_rad] = driftBound(rec.match);
         if (dm > bound_m || da > bound_rad) {
           state_.records.back().accepted = false;
@@ -111,11 +150,7 @@ void LoopCloser::process(std::uint64_t id) {
       }
       ++state_.stats.loops_accepted;
       if (!state_.anchored) anchorSession(implied, id);
-      AcceptedLoop loop{rec.match, id, v.relative_pose, v.information, state_.records.size() - 1, true};
-      if (lc.loop_sigma_xy_m > 0 && lc.loop_sigma_phi_deg > 0) {
-        const double sxy = lc.loop_sigma_xy_m, sphi = lc.loop_sigma_phi_deg * M_PI / 180;
-        loop.information = Eigen::Vector3d(1 / (sxy * sxy), 1 / (sxy * sxy), 1 / (sphi * sphi)).asDiagonal();
-      }
+      AcceptedLoop loop{rec.match, id, v.relative_pose, loop_information, state_.records.size() - 1, true};
       optimise |= dm > lc.optimise_min_correction_m || da > lc.optimise_min_correction_deg * M_PI / 180;
       logger().logFmt(mrpt::system::LVL_DEBUG,
                       "slam: loop %llu -> %llu accepted (inliers %.2f, correction %.2f m)",

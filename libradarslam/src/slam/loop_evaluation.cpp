@@ -25,6 +25,7 @@ LoopEvaluation evaluateLoops(const KeyframeMap& map, const std::vector<LoopRecor
     }
   }
   std::vector<char> has_true(n, 0), found(n, 0);
+  std::size_t nees_count = 0, nees_inside = 0;
   for (std::size_t q = 0; q < n; ++q) {
     if (!truth[q]) continue;
     for (std::size_t k = 0; k + p.exclude_recent < q; ++k) {
@@ -46,6 +47,12 @@ LoopEvaluation evaluateLoops(const KeyframeMap& map, const std::vector<LoopRecor
       ev.false_in_graph += !l.rejected_by_graph;
       continue;
     }
+    const Eigen::Vector3d e(l.relative.x - g.x, l.relative.y - g.y,
+                            std::remainder(l.relative.phi - g.phi, 2 * M_PI));
+    const double nees = e.dot(l.information * e);
+    ev.nees_mean += nees;
+    ++nees_count;
+    nees_inside += nees <= 7.815;
     ev.max_error_m = std::max(ev.max_error_m, em);
     ev.max_error_deg = std::max(ev.max_error_deg, ed);
     found[l.query] = 1;
@@ -53,6 +60,10 @@ LoopEvaluation evaluateLoops(const KeyframeMap& map, const std::vector<LoopRecor
   for (std::size_t q = 0; q < n; ++q) {
     ev.keyframes_with_true_loop += has_true[q];
     ev.keyframes_with_loop_found += has_true[q] && found[q];
+  }
+  if (nees_count > 0) {
+    ev.nees_mean /= static_cast<double>(nees_count);
+    ev.nees_within_95 = double(nees_inside) / double(nees_count);
   }
   ev.recall =
       ev.keyframes_with_true_loop ? double(ev.keyframes_with_loop_found) / ev.keyframes_with_true_loop : 0;

@@ -37,6 +37,8 @@ void loadParams(const YamlParams& yaml, SlamParams& p) {
   lc.get("drift_fraction", p.loop_closing.drift_fraction, Range::closed(0, 1));
   lc.get("loop_sigma_xy_m", p.loop_closing.loop_sigma_xy_m, Range::above(0, 100));
   lc.get("loop_sigma_phi_deg", p.loop_closing.loop_sigma_phi_deg, Range::above(0, 180));
+  lc.get("loop_information_estimated", p.loop_closing.loop_information_estimated);
+  lc.get("drift_gate_chi2", p.loop_closing.drift_gate_chi2, Range::closed(0, 10000));
   lc.get("drift_base_m", p.loop_closing.drift_base_m, Range::closed(0, 10000.0));
   lc.get("drift_base_deg", p.loop_closing.drift_base_deg, Range::closed(0, 360));
   lc.get("drift_deg_per_m", p.loop_closing.drift_deg_per_m, Range::closed(0, 10));

@@ -85,6 +85,7 @@ struct SlamState {
   /// are in its own odometry frame until loop closing anchors it to the map (anchored = true).
   std::uint64_t session_first = 0;
   bool anchored = true;
+  std::uint64_t anchor_keyframe = 0;  ///< the new session's keyframe whose loop anchored it
   double anchor_travelled_m = 0;  ///< the anchoring keyframe's travelled_m (drift bound to map keyframes)
   SlamStats stats;
 };

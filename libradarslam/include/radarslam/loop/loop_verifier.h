@@ -16,15 +16,16 @@
 //  4. Acceptance: enough inliers (absolute and as a share of the smaller cloud), a small inlier
 //     RMS, and inliers spread around the sensor (at least min_inlier_sectors of 8 bearing sectors).
 //
-// The information matrix is the Gauss-Newton Hessian of the point-to-point residuals at the
-// solution, J^T J / sigma^2 with sigma = max(inlier RMS, min_sigma_m), times information_scale
-// (< 1: neighbouring radar points are not independent measurements).
+// The information matrix is estimated from the final alignment (loop/alignment_information.h):
+// point-to-line where the candidate is locally a line, point-to-point elsewhere, one measurement
+// per correlation cell, sigma from the residuals. Along a featureless wall it is weak along the wall.
 #include <mrpt/math/TPose2D.h>
 #include <Eigen/Core>
 
 #include <span>
 #include <string>
 
+#include "radarslam/loop/alignment_information.h"
 #include "radarslam/radar/peak_cloud.h"
 
 namespace radarslam {
@@ -46,8 +47,8 @@ struct LoopVerifierParams {
   double min_inlier_ratio = 0.4;        ///< inliers / size of the smaller full cloud; valid [0, 1]
   double max_rms_m = 0.6;               ///< inlier RMS after ICP; valid (0, 100]
   int min_inlier_sectors = 4;           ///< of 8 bearing sectors around the query sensor; valid [0, 8]
-  double min_sigma_m = 0.1;             ///< valid [0, 100]
-  double information_scale = 0.05;      ///< valid (0, 1000000]
+  /// keys normal_radius_m, linearity_ratio, correlation_length_m, min_sigma_m
+  AlignmentInformationParams information;
 };
 
 /// Overrides `params` from the YAML keys of the same names.

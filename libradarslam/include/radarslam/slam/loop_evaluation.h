@@ -32,6 +32,9 @@ struct LoopEvaluation {
   std::size_t false_in_graph = 0;                ///< false loops still active after optimisation
   double recall = 0;
   double max_error_m = 0, max_error_deg = 0;  ///< over correct accepted loops
+  /// Consistency of the verifier's information over correct accepted loops: NEES = e^T I e of the
+  /// (x, y, phi) error; a calibrated estimate has mean 3 and 95 % within chi2(3) 95 % = 7.81.
+  double nees_mean = 0, nees_within_95 = 0;
 };
 
 LoopEvaluation evaluateLoops(const KeyframeMap& map, const std::vector<LoopRecord>& loops,

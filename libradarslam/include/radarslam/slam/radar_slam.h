@@ -1,4 +1,5 @@
 #pragma once
+#include <Eigen/Core>
 // The full RadarSLAM system (paper Sec. III, Fig. 2): pose tracking in the caller's thread
 // (frontend/odometry.h), local mapping with local bundle adjustment and loop closing each in its
 // own thread, pose-graph optimisation after accepted loops, and the keyframe map.
@@ -30,6 +31,7 @@ struct LoopRecord {
   std::string reason;              ///< why verification rejected it
   mrpt::math::TPose2D relative;    ///< query in match's frame (when accepted)
   double inlier_ratio = 0, ambiguity_ratio = 1;
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();  ///< the verifier's estimate, of relative
 };
 
 struct SlamStats {

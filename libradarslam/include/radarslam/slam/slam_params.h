@@ -64,6 +64,13 @@ struct LoopClosingParams {
   double drift_base_m = 5.0;      ///< valid [0, 10000]
   double drift_base_deg = 5.0;    ///< valid [0, 360]
   double drift_deg_per_m = 0.01;  ///< valid [0, 10]
+  /// > 0: the drift gate is a chi^2(3) test instead of the linear bound above: the difference
+  /// between the loop's relative pose and the current estimate's, under the covariance
+  /// accumulated along the odometry chain between the two keyframes (OdometryEdgeParams,
+  /// propagated; slam/loop_uncertainty.h) plus the loop's own. 16.27 = chi^2(3) at 99.9 %, the
+  /// pose graph's own outlier bound. Candidates farther than the ellipse's largest semi-axis +
+  /// verifier.max_translation_m are not verified. 0: the linear bound.
+  double drift_gate_chi2 = 0;  ///< valid [0, 10000]
   /// After accepting a loop, the graph is optimised only if the loop moves the query keyframe by
   /// more than this from its current estimate; consistent loops (e.g. along a revisit already
   /// corrected) are just added. The final optimisation (finish()) uses every loop.
@@ -75,6 +82,9 @@ struct LoopClosingParams {
   /// the pose graph's chi^2 test drop hundreds of true loops; set these to 0 to use it anyway.
   double loop_sigma_xy_m = 0.2;     ///< valid (0, 100]
   double loop_sigma_phi_deg = 1.0;  ///< valid (0, 180]
+  /// true: a loop edge's information is the verifier's estimate (loop/alignment_information.h),
+  /// anisotropic where the place is degenerate, instead of the fixed sigmas above.
+  bool loop_information_estimated = false;
 };
 
 struct SlamParams {

@@ -1,0 +1,225 @@
+#!/usr/bin/env python3
+"""The accuracy benchmark (issue 13, item 5): odometry, SLAM and relocalisation over the fixed
+list of simulated sequences in config/bench/sequences.yaml, split into train and test.
+
+    scripts/bench.py [--split test|train|all] [--reduced] [--only NAME] [--out out/bench]
+                     [--radarslam build/apps/radarslam] [--jobs N] [--check]
+
+--reduced runs each sequence's `ci_scans` (sequences with ci_scans 0 are left out); CI runs
+`--reduced --check`. --check fails (exit 1) on a regression of what must always hold: SLAM's
+KITTI errors no worse than its own odometry's, no false loop left in the graph, no relocalised
+scan reported as tracking or global_fix more than 2 m / 2 deg off the map. Simulations are
+cached in OUT/<name>/sim (re-used when the options are the same). Results: a Markdown table on
+stdout and OUT/results.json.
+"""
+import argparse
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+import yaml
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def fail(msg):
+    print(f"bench.py: {msg}", file=sys.stderr)
+    sys.exit(2)
+
+
+def load_sequences(path):
+    try:
+        with open(path, encoding="utf-8") as f:
+            doc = yaml.safe_load(f)
+    except (OSError, yaml.YAMLError) as e:
+        fail(f"{path}: {e}".replace("\n", " "))
+    defaults = doc.get("defaults", {})
+    known = {"name", "split", "seed", "weather", "scans", "ci_scans", "simulate", "localize", "localize_weather"}
+    seqs = []
+    for s in doc.get("sequences", []):
+        unknown = set(s) - known
+        if unknown:
+            fail(f"{path}: sequence {s.get('name')}: unknown keys {sorted(unknown)}")
+        if s.get("split") not in ("train", "test"):
+            fail(f"{path}: sequence {s.get('name')}: split must be train or test")
+        seqs.append({**defaults, **s})
+    names = [s["name"] for s in seqs]
+    if len(set(names)) != len(names):
+        fail(f"{path}: duplicate sequence names")
+    return seqs
+
+
+def run(cmd, log):
+    with open(log, "a", encoding="utf-8") as f:
+        f.write("$ " + " ".join(cmd) + "\n")
+        f.flush()
+        r = subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT)
+    if r.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed ({r.returncode}); see {log}")
+
+
+def simulate(exe, seq, scans, traversal, weather, out, log):
+    """Simulates into `out` unless it already holds the same simulation."""
+    args = ["--seed", str(seq["seed"]), "--scans", str(scans), "--weather", weather,
+            "--traversal", str(traversal)] + [str(a) for a in seq["simulate"]]
+    stamp = os.path.join(out + ".args")
+    if os.path.isdir(out) and os.path.exists(stamp):
+        with open(stamp, encoding="utf-8") as f:
+            if f.read() == " ".join(args):
+                return
+    if os.path.exists(stamp):
+        os.remove(stamp)
+    run([exe, "simulate", out, "--force"] + args, log)
+    with open(stamp, "w", encoding="utf-8") as f:
+        f.write(" ".join(args))
+
+
+def localization_metrics(eval_dir):
+    """From `radarslam localize --eval-dir`: errors.csv (map-relative errors) and summary.txt."""
+    summary = {}
+    with open(os.path.join(eval_dir, "summary.txt"), encoding="utf-8") as f:
+        for line in f:
+            parts = line.split()
+            if len(parts) == 2:
+                summary[parts[0]] = parts[1]
+    trusted = good = bad = scans = 0
+    with open(os.path.join(eval_dir, "errors.csv"), encoding="utf-8") as f:
+        for line in f:
+            if line.startswith("#"):
+                continue
+            c = line.split()
+            status, pos, head = c[2], float(c[9]), float(c[10])
+            if math.isnan(pos):
+                continue
+            scans += 1
+            if status in ("tracking", "global_fix"):
+                trusted += 1
+                if pos > 2.0 or head > 2.0:
+                    bad += 1
+            if status == "tracking" and pos <= 0.3 and head <= 0.5:
+                good += 1
+    total = int(summary.get("scans", "0"))
+    return {
+        "scans": total,
+        "tracking_within_0.3m_0.5deg": good / total if total else None,
+        "trusted_over_2m_or_2deg": bad,
+        "first_fix_scan": int(summary.get("first_fix_scan", "-1")),
+        "scans_per_s": float(summary.get("scans_per_s", "nan")),
+    }
+
+
+def run_sequence(exe, seq, scans, out_root):
+    d = os.path.join(out_root, seq["name"])
+    os.makedirs(d, exist_ok=True)
+    log = os.path.join(d, "log.txt")
+    open(log, "w").close()
+    t0 = time.time()
+    simulate(exe, seq, scans, 1, seq["weather"], os.path.join(d, "sim"), log)
+    map_dir = os.path.join(d, "map")
+    run([exe, "map", os.path.join(d, "sim"), "-o", map_dir, "--force", "--threads", "1"], log)
+    with open(os.path.join(map_dir, "eval", "slam_quality.json"), encoding="utf-8") as f:
+        result = json.load(f)
+    with open(os.path.join(map_dir, "summary.txt"), encoding="utf-8") as f:
+        for line in f:
+            if line.strip().startswith("speed"):
+                result["slam_scans_per_s"] = float(line.split()[1])
+    if seq["localize"]:
+        sim2 = os.path.join(d, "sim2")
+        simulate(exe, seq, scans, 2, seq["localize_weather"], sim2, log)
+        ev = os.path.join(d, "localize_eval")
+        shutil.rmtree(ev, ignore_errors=True)
+        poses = os.path.join(d, "localize.tum")
+        for old in (poses, poses + ".csv", poses + ".boreas.txt"):
+            if os.path.exists(old):
+                os.remove(old)
+        run([exe, "localize", map_dir, sim2, "-o", poses, "-q", "--eval-dir", ev], log)
+        result["localization"] = localization_metrics(ev)
+    result["wall_s"] = time.time() - t0
+    return result
+
+
+def regressions(name, r):
+    """What must hold on every sequence, whatever its length."""
+    out = []
+    o, s = r["odometry"], r["slam"]
+    for key in ("kitti_t_percent", "kitti_r_deg_per_m"):
+        if o[key] is not None and s[key] is not None and s[key] > o[key]:
+            out.append(f"{name}: SLAM {key} {s[key]:.4g} worse than its odometry's {o[key]:.4g}")
+    if r["loops"]["false_in_graph"] > 0:
+        out.append(f"{name}: {r['loops']['false_in_graph']} false loops left in the graph")
+    loc = r.get("localization")
+    if loc and loc["trusted_over_2m_or_2deg"] > 0:
+        out.append(f"{name}: {loc['trusted_over_2m_or_2deg']} relocalised scans trusted but > 2 m / 2 deg off")
+    return out
+
+
+def fmt(v, spec):
+    return "-" if v is None else format(v, spec)
+
+
+def table(results):
+    rows = ["| sequence | split | km | odometry % / deg/m | SLAM % / deg/m | ATE odo / SLAM m | per-frame RPE max m "
+            "| loops: recall, false | revisit pairs consistent | reloc tracking ok, trusted > 2 m | SLAM scans/s |",
+            "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for name, split, r in results:
+        o, s, l, mc = r["odometry"], r["slam"], r["loops"], r["map_consistency"]["revisits"]
+        loc = r.get("localization")
+        reloc = "-" if not loc else f"{100 * loc['tracking_within_0.3m_0.5deg']:.1f} %, {loc['trusted_over_2m_or_2deg']}"
+        rows.append(
+            f"| {name} | {split} | {o['path_m'] / 1000:.2f} | {fmt(o['kitti_t_percent'], '.2f')} / "
+            f"{fmt(o['kitti_r_deg_per_m'], '.4f')} | {fmt(s['kitti_t_percent'], '.2f')} / "
+            f"{fmt(s['kitti_r_deg_per_m'], '.4f')} | {o['ate_rmse_m']:.2f} / {s['ate_rmse_m']:.2f} | "
+            f"{o['rpe_max_m']:.2f} | {fmt(l['recall'], '.2f')}, {l['false_in_graph']} | "
+            f"{100 * mc['fraction']:.1f} % of {mc['pairs']} | {reloc} | {fmt(r.get('slam_scans_per_s'), '.1f')} |")
+    return "\n".join(rows)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
+    ap.add_argument("--sequences", default=os.path.join(ROOT, "config", "bench", "sequences.yaml"))
+    ap.add_argument("--split", choices=("train", "test", "all"), default="test")
+    ap.add_argument("--reduced", action="store_true", help="each sequence's ci_scans (CI)")
+    ap.add_argument("--only", action="append", default=[], metavar="NAME", help="just these sequences")
+    ap.add_argument("--out", default=os.path.join(ROOT, "out", "bench"))
+    ap.add_argument("--radarslam", default=os.path.join(ROOT, "build", "apps", "radarslam"))
+    ap.add_argument("--check", action="store_true", help="exit 1 on a regression")
+    a = ap.parse_args()
+    if not os.access(a.radarslam, os.X_OK):
+        fail(f"{a.radarslam}: not an executable (build first, or pass --radarslam)")
+    seqs = load_sequences(a.sequences)
+    unknown = set(a.only) - {s["name"] for s in seqs}
+    if unknown:
+        fail(f"--only: unknown sequences {sorted(unknown)}")
+    chosen = [s for s in seqs if (a.split == "all" or s["split"] == a.split) and (not a.only or s["name"] in a.only)]
+    if a.reduced:
+        chosen = [s for s in chosen if s.get("ci_scans", 0) > 0]
+    if not chosen:
+        fail("no sequence selected")
+    os.makedirs(a.out, exist_ok=True)
+    results, problems = [], []
+    for i, s in enumerate(chosen):
+        scans = s["ci_scans"] if a.reduced else s["scans"]
+        print(f"bench: [{i + 1}/{len(chosen)}] {s['name']} ({s['split']}, {scans} scans)", file=sys.stderr, flush=True)
+        try:
+            r = run_sequence(a.radarslam, s, scans, a.out)
+        except (RuntimeError, OSError, KeyError, ValueError) as e:
+            fail(str(e))
+        results.append((s["name"], s["split"], r))
+        problems += regressions(s["name"], r)
+        print(f"bench: {s['name']} done in {r['wall_s']:.0f} s", file=sys.stderr, flush=True)
+    with open(os.path.join(a.out, "results.json"), "w", encoding="utf-8") as f:
+        json.dump({n: {"split": sp, **r} for n, sp, r in results}, f, indent=1)
+    print(table(results))
+    for p in problems:
+        print(f"bench: REGRESSION {p}", file=sys.stderr)
+    if a.check and problems:
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,96 @@
+// slam/loop_uncertainty.h: the chain covariance from prefix sums equals step-by-step first-order
+// propagation; lateral uncertainty on a straight drive grows like distance^3 (heading random walk);
+// a session start makes it unknown; the chi2 drift gate passes what the covariance explains.
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <cmath>
+
+#include "graph_optimiser.h"
+#include "loop_uncertainty.h"
+
+namespace radarslam::slam_detail {
+namespace {
+
+void fillChain(SlamState& s, int n, double step_m, double turn_rad) {
+  for (int i = 0; i < n; ++i) {
+    SlamKeyframe kf;
+    kf.id = static_cast<std::uint64_t>(i);
+    kf.odom_edge = TPose2D(step_m, 0.1 * std::sin(i), turn_rad * std::cos(0.3 * i));
+    s.keyframes.push_back(kf);
+  }
+}
+
+Eigen::Matrix3d propagated(const SlamState& s, std::uint64_t from, std::uint64_t to,
+                           const OdometryEdgeParams& p) {
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  TPose2D rel(0, 0, 0);
+  for (std::uint64_t k = from + 1; k <= to; ++k) {
+    const TPose2D& e = s.keyframes[k].odom_edge;
+    const Eigen::Matrix3d ec = odometryInformation(p, std::hypot(e.x, e.y), false).inverse();
+    const double c = std::cos(rel.phi), sn = std::sin(rel.phi);
+    Eigen::Matrix3d Jr, Je;
+    Jr << 1, 0, -sn * e.x - c * e.y, 0, 1, c * e.x - sn * e.y, 0, 0, 1;
+    Je << c, -sn, 0, sn, c, 0, 0, 0, 1;
+    cov = Jr * cov * Jr.transpose() + Je * ec * Je.transpose();
+    rel = compose(rel, e);
+  }
+  return cov;
+}
+
+TEST(ChainCovariance, EqualsStepByStepPropagation) {
+  const OdometryEdgeParams p;
+  SlamState s;
+  fillChain(s, 120, 2.0, 0.05);
+  const ChainCovariance chain(s, 10, 119, p);
+  for (const std::uint64_t m : {10u, 30u, 77u, 118u}) {
+    const Eigen::Matrix3d expected = propagated(s, m, 119, p), got = chain.relativeTo(m);
+    EXPECT_LT((expected - got).norm(), 1e-9 * (1 + expected.norm())) << "from " << m;
+  }
+}
+
+TEST(ChainCovariance, LateralUncertaintyGrowsWithTheCubeOfDistance) {
+  const OdometryEdgeParams p;
+  SlamState s;
+  for (int i = 0; i < 401; ++i) {
+    SlamKeyframe kf;
+    kf.odom_edge = TPose2D(2.0, 0, 0);
+    s.keyframes.push_back(kf);
+  }
+  const ChainCovariance chain(s, 0, 400, p);
+  const double near = chain.relativeTo(300)(1, 1), far = chain.relativeTo(200)(1, 1);  // 200 m vs 400 m
+  EXPECT_NEAR(far / near, 8.0, 1.0);
+}
+
+TEST(ChainCovariance, ASessionStartMakesTheRelativePoseUnknown) {
+  const OdometryEdgeParams p;
+  SlamState s;
+  fillChain(s, 50, 2.0, 0.0);
+  s.keyframes[20].session_start = true;
+  const ChainCovariance chain(s, 0, 49, p);
+  EXPECT_FALSE(chain.relativeTo(10).allFinite());
+  EXPECT_TRUE(chain.relativeTo(30).allFinite());
+}
+
+TEST(DriftGate, PassesWhatTheCovarianceExplainsAndRejectsTheRest) {
+  const Eigen::Matrix3d chain = Eigen::Vector3d(1.0, 4.0, 0.01).asDiagonal();
+  const Eigen::Matrix3d loop_info = Eigen::Vector3d(1e4, 1e4, 1e6).asDiagonal();
+  const TPose2D loop(10, 0, 0);
+  EXPECT_LT(correctionMahalanobis2(loop, TPose2D(11, 2, 0.05), chain, loop_info), 16.27);
+  EXPECT_GT(correctionMahalanobis2(loop, TPose2D(10, 12, 0), chain, loop_info), 16.27);
+  EXPECT_GT(correctionMahalanobis2(loop, TPose2D(10, 0, 0.6), chain, loop_info), 16.27);
+}
+
+TEST(LoopInformation, EstimatedKeepsTheAlignmentsDegeneracyAndTheModelFloor) {
+  LoopClosingParams p;
+  p.loop_information_estimated = true;
+  Eigen::Matrix3d wall = Eigen::Vector3d(0, 1e6, 1e8).asDiagonal();  // nothing along x
+  const Eigen::Matrix3d info = loopInformation(wall, p);
+  EXPECT_LT(info(0, 0), 1e-3);                                                // along the wall: unknown
+  EXPECT_NEAR(info(1, 1), 1 / (p.loop_sigma_xy_m * p.loop_sigma_xy_m), 1.0);  // across: the floor
+  p.loop_information_estimated = false;
+  EXPECT_NEAR(loopInformation(wall, p)(0, 0), 1 / (p.loop_sigma_xy_m * p.loop_sigma_xy_m), 1e-9);
+}
+
+}  // namespace
+}  // namespace radarslam::slam_detail
