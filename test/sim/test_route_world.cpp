@@ -206,6 +206,21 @@ TEST(SimRouteWorld, WallSceneIsOneSmoothFacadeOnOneSideAndNothingOnTheOther) {
   ASSERT_EQ(net.zones.size(), 1u);
   EXPECT_GE(net.wall_length_m, 300.0);
   EXPECT_LE(net.wall_length_m, 400.0);
+  const World mixed = networkWorld(1, Scene::Mixed);
+  const SceneZone& z = net.zones.front();
+  const Vec2 axis = (z.b - z.a) * (1.0 / (z.b - z.a).norm());
+  int sides[2] = {0, 0};
+  for (const auto& seg : mixed.segments)
+    for (const Vec2 q : {seg.a, seg.b}) {
+      const double along = (q - z.a).dot(axis), across = axis.cross(q - z.a);
+      if (along > 0 && along < (z.b - z.a).norm() && std::abs(across) < 60) ++sides[across > 0];
+    }
+  for (const auto& c : mixed.circles) {
+    const double along = (c.centre - z.a).dot(axis), across = axis.cross(c.centre - z.a);
+    if (along > 0 && along < (z.b - z.a).norm() && std::abs(across) < 60) ++sides[across > 0];
+  }
+  EXPECT_GT(sides[0] + sides[1], 0);
+  EXPECT_EQ(std::min(sides[0], sides[1]), 0) << sides[0] << " / " << sides[1];
 }
 
 TEST(SimStreetNetwork, HasCurvesSkewJunctionsARoundaboutAndRevisitsBothWays) {
