@@ -261,6 +261,8 @@ int runSimulate(int argc, char** argv) {
       s.scans, s.length_m / 1000, config.weather.c_str(), config.traversal,
       static_cast<unsigned long long>(config.seed), s.loops, s.opposite_loops, s.wall_seconds,
       s.wall_seconds > 0 ? static_cast<double>(s.scans) / s.wall_seconds : 0.0, out.getValue().c_str());
+  if (world_type != sim::WorldType::Grid)
+    std::printf("world: %s, scene %s\n", config.world_type.c_str(), config.scene.c_str());
   return 0;
 }
 

@@ -21,8 +21,8 @@ double distanceToSegment(Vec2 p, Vec2 a, Vec2 b);
 class RoadIndex {
  public:
   explicit RoadIndex(const std::vector<RoadPiece>& pieces, double cell_m = 20.0);
-  /// min over pieces of (distance to the piece - its half-width), capped at `cap` (+ the cap
-  /// when no piece is within reach of the cell neighbourhood).
+  /// min over pieces of (distance to the piece - its half-width), capped at `cap`. Exact when
+  /// below one cell (every piece that close is listed in p's cell); otherwise >= one cell or cap.
   double clearance(Vec2 p, double cap = 30.0) const;
   const std::vector<RoadPiece>& pieces() const { return pieces_; }
 
