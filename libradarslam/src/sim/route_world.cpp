@@ -11,6 +11,7 @@
 #include <cmath>
 #include <unordered_set>
 
+#include "clear_placer.h"
 #include "radarslam/core/errors.h"
 #include "radarslam/sim/rng.h"
 #include "world_builder.h"
@@ -88,7 +89,7 @@ class RouteWorldBuilder {
  public:
   RouteWorldBuilder(World& w, const std::vector<RoadPiece>& roads, const RouteWorldParams& p, Scene scene,
                     const std::vector<SceneZone>& zones, int traversal)
-      : w_(w), index_(roads), p_(p), scene_(scene), zones_(zones), traversal_(traversal) {}
+      : w_(w), place_(w, roads, p.margin_m), p_(p), scene_(scene), zones_(zones), traversal_(traversal) {}
 
   /// The scene at p and the zone index (-1 = none).
   Scene sceneAt(Vec2 q, int& zone) const {
@@ -235,78 +236,10 @@ class RouteWorldBuilder {
     return p.pts.front() + p.dir * u + p.out * offset;
   }
 
-  // --- objects, each trimmed or dropped to keep clear of every road piece ----------------------
-  bool clear(Vec2 q, double r = 0) const { return index_.clearance(q) - r > p_.margin_m + 0.25; }
-
-  /// Adds the parts of a-b that keep clear of the roads (sampled every 0.5 m; between samples the
-  /// clearance can drop by at most 0.25 m, hence the extra 0.25 m in clear()).
-  void segment(Vec2 a, Vec2 b, const Surface& s) {
-    const double len = (b - a).norm();
-    const int n = std::max(1, static_cast<int>(std::ceil(len / 0.5)));
-    int run_start = -1;
-    for (int k = 0; k <= n + 1; ++k) {
-      const bool ok = k <= n && clear(a + (b - a) * (static_cast<double>(k) / n));
-      if (ok && run_start < 0) run_start = k;
-      if (!ok && run_start >= 0) {
-        if (k - 1 > run_start)
-          w_.segments.push_back({a + (b - a) * (static_cast<double>(run_start) / n),
-                                 a + (b - a) * (static_cast<double>(k - 1) / n), s});
-        run_start = -1;
-      }
-    }
-  }
-
-  void circle(Vec2 c, double r, const Surface& s) {
-    if (clear(c, r)) w_.circles.push_back({c, r, s});
-  }
-
-  /// A box with its length along dir; `whole` = all four sides clear or nothing (a car).
-  void box(Vec2 c, Vec2 dir, double length, double width, const Surface& s, bool whole) {
-    const Vec2 l = leftOf(dir) * (width / 2), f = dir * (length / 2);
-    const Vec2 q[4] = {c + f + l, c + f - l, c - f - l, c - f + l};
-    if (whole) {
-      for (int k = 0; k < 4; ++k)
-        for (int t = 0; t < 8; ++t)
-          if (!clear(q[k] + (q[(k + 1) % 4] - q[k]) * (t / 8.0))) return;
-      for (int k = 0; k < 4; ++k) w_.segments.push_back({q[k], q[(k + 1) % 4], s});
-      return;
-    }
-    for (int k = 0; k < 4; ++k) segment(q[k], q[(k + 1) % 4], s);
-  }
-
-  void tree(Vec2 c, Rng& rng) {
-    const double r = rng.uniform(1.5, 3.0);
-    const Surface canopy = canopySurface(rng);
-    Surface trunk = poleSurface(rng);
-    trunk.reflectivity = 0.5f;
-    trunk.roughness = 0.8f;
-    const double tr = rng.uniform(0.15, 0.3);
-    if (!clear(c, r)) return;
-    w_.circles.push_back({c, r, canopy});
-    w_.circles.push_back({c, tr, trunk});
-  }
-
-  void pole(Vec2 c, Rng& rng) {
-    const double r = rng.uniform(0.1, 0.2);
-    circle(c, r, poleSurface(rng));
-  }
-
-  void clutter(Vec2 c, Rng& rng) {
-    Surface s;
-    s.material = Material::Pole;
-    s.reflectivity = static_cast<float>(rng.uniform(0.1, 0.9));
-    s.roughness = 0.8f;
-    s.transmission = 0.5f;
-    s.depth_m = 0.3f;
-    s.texture_period_m = 1.0f;
-    s.texture_seed = static_cast<std::uint32_t>(rng.next());
-    circle(c, rng.uniform(0.1, 0.4), s);
-  }
-
   void car(const Piece& p, double u, double offset, Vec2 dir, Rng& trng) {
     const Vec2 c = at(p, u + trng.uniform(-0.3, 0.3), offset + trng.uniform(-0.15, 0.15));
     const double length = trng.uniform(4.0, 4.9), width = trng.uniform(1.7, 2.0);
-    box(c, dir, length, width, carSurface(trng), true);
+    place_.box(c, dir, length, width, carSurface(trng), true);
   }
 
   // --- rows --------------------------------------------------------------------------------------
@@ -322,8 +255,8 @@ class RouteWorldBuilder {
       constexpr double period = 11.0;
       const double first = std::fmod(p.pts.front().dot(p.dir), period);  // houses on a world lattice
       for (double u = period - (first < 0 ? first + period : first); u + period <= p.length; u += period) {
-        segment(at(p, u, 0), at(p, u + period, 0), s);
-        segment(at(p, u, 0), at(p, u, 10), s);
+        place_.segment(at(p, u, 0), at(p, u + period, 0), s);
+        place_.segment(at(p, u, 0), at(p, u, 10), s);
       }
       return;
     }
@@ -332,13 +265,13 @@ class RouteWorldBuilder {
     const double trim0 = rng.chance(0.5) ? 0.0 : rng.uniform(0.5, 2.0);
     const double trim1 = rng.chance(0.5) ? 0.0 : rng.uniform(0.5, 2.0);
     const double len = p.length - trim0 - trim1, depth = rng.uniform(8, 20);
-    box(at(p, trim0 + len / 2, setback + depth / 2), p.dir, len, depth, facadeSurface(rng), false);
+    place_.box(at(p, trim0 + len / 2, setback + depth / 2), p.dir, len, depth, facadeSurface(rng), false);
   }
 
   void kerb(const Piece& p, Rng& rng) {
-    if (rng.chance(0.8)) pole(at(p, rng.uniform(0, p.length), 0), rng);
+    if (rng.chance(0.8)) place_.pole(at(p, rng.uniform(0, p.length), 0), rng);
     for (double u = rng.uniform(0, 6); u < p.length; u += rng.uniform(3, 9))
-      clutter(at(p, u, rng.uniform(0.0, 2.5)), rng);
+      place_.clutter(at(p, u, rng.uniform(0.0, 2.5)), rng);
   }
 
   void parking(const Piece& p, Rng& trng) {
@@ -350,21 +283,21 @@ class RouteWorldBuilder {
     if (rng.chance(0.2)) return;
     const double gap0 = rng.uniform(0.0, 4.0), gap1 = rng.uniform(0.0, 1.0);  // a driveway
     const Surface s = rng.chance(0.6) ? hedgeSurface(rng) : fenceSurface(rng);
-    segment(at(p, gap0, 0), at(p, std::max(gap0, p.length - gap1), 0), s);
-    if (rng.chance(0.4)) tree(at(p, rng.uniform(0, p.length), rng.uniform(3, 6)), rng);
+    place_.segment(at(p, gap0, 0), at(p, std::max(gap0, p.length - gap1), 0), s);
+    if (rng.chance(0.4)) place_.tree(at(p, rng.uniform(0, p.length), rng.uniform(3, 6)), rng);
   }
 
   void house(const Piece& p, Rng& rng) {
     if (p.length < 10 || rng.chance(0.15)) return;
     const double width = std::min(p.length - 1, rng.uniform(9, 14)), depth = rng.uniform(8, 12);
     const double u = rng.uniform(width / 2, p.length - width / 2);
-    box(at(p, u, rng.uniform(0, 5) + depth / 2), p.dir, width, depth, facadeSurface(rng), false);
+    place_.box(at(p, u, rng.uniform(0, 5) + depth / 2), p.dir, width, depth, facadeSurface(rng), false);
   }
 
   void hedgerow(const Piece& p, Rng& rng) {
     if (rng.chance(0.4)) return;  // a gap (a gate, a field entrance)
     const double a = rng.uniform(0, 0.3 * p.length), b = rng.uniform(0.7 * p.length, p.length);
-    segment(at(p, a, rng.uniform(-1, 1)), at(p, b, rng.uniform(-1, 1)), hedgeSurface(rng));
+    place_.segment(at(p, a, rng.uniform(-1, 1)), at(p, b, rng.uniform(-1, 1)), hedgeSurface(rng));
   }
 
   /// A metal crash barrier along a dual carriageway (cells of that kind only), no gaps.
@@ -377,16 +310,16 @@ class RouteWorldBuilder {
     s.roughness = 0.25f;
     s.transmission = 0.5f;  // low: the fan beam sees over it
     s.texture_period_m = 4.0f;
-    for (std::size_t k = 1; k < p.pts.size(); ++k) segment(p.pts[k - 1], p.pts[k], s);
+    for (std::size_t k = 1; k < p.pts.size(); ++k) place_.segment(p.pts[k - 1], p.pts[k], s);
   }
 
   void field(const Piece& p, Rng& rng) {
-    if (rng.chance(0.3)) tree(at(p, rng.uniform(0, p.length), rng.uniform(0, 25)), rng);
-    if (rng.chance(0.5)) pole(at(p, rng.uniform(0, p.length), -2.5), rng);
-    for (int k = 0; k < 3; ++k) clutter(at(p, rng.uniform(0, p.length), rng.uniform(5, 120)), rng);
+    if (rng.chance(0.3)) place_.tree(at(p, rng.uniform(0, p.length), rng.uniform(0, 25)), rng);
+    if (rng.chance(0.5)) place_.pole(at(p, rng.uniform(0, p.length), -2.5), rng);
+    for (int k = 0; k < 3; ++k) place_.clutter(at(p, rng.uniform(0, p.length), rng.uniform(5, 120)), rng);
     if (rng.chance(0.06)) {  // a farm building
       const double w = rng.uniform(15, 30), d = rng.uniform(8, 14);
-      box(at(p, p.length / 2, rng.uniform(30, 70)), p.dir, w, d, facadeSurface(rng), false);
+      place_.box(at(p, p.length / 2, rng.uniform(30, 70)), p.dir, w, d, facadeSurface(rng), false);
     }
   }
 
@@ -396,7 +329,7 @@ class RouteWorldBuilder {
     const bool lot = hashToUnit(hashAll({w_.seed, 14, cellKey(p.pts.front().x, p_.scene_cell_m),
                                          cellKey(p.pts.front().y, p_.scene_cell_m), p.out.x > 0})) < 0.7;
     if (!lot) {
-      segment(at(p, 0, -2), at(p, p.length, -2), fenceSurface(rng));
+      place_.segment(at(p, 0, -2), at(p, p.length, -2), fenceSurface(rng));
       return;
     }
     const Vec2 across = p.out;
@@ -404,12 +337,12 @@ class RouteWorldBuilder {
       const double offset = 2.5 + row * 7.0;
       for (double u = 1.3; u < p.length - 1.3; u += 2.6)
         if (trng.chance(w_.params.parked_car_probability)) car(p, u, offset, across, trng);
-      if (row % 2 == 1) pole(at(p, rng.uniform(0, p.length), offset + 3.5), rng);
+      if (row % 2 == 1) place_.pole(at(p, rng.uniform(0, p.length), offset + 3.5), rng);
     }
   }
 
   void avenueTrees(const Piece& p, Rng& rng) {
-    for (double u = rng.uniform(1, 4); u < p.length; u += rng.uniform(8, 10)) tree(at(p, u, 0), rng);
+    for (double u = rng.uniform(1, 4); u < p.length; u += rng.uniform(8, 10)) place_.tree(at(p, u, 0), rng);
   }
 
   /// One smooth facade following the road on one side only (per zone, or per wall-length cell).
@@ -429,11 +362,11 @@ class RouteWorldBuilder {
     s.depth_m = 0.1f;
     s.texture_period_m = 1.0e4f;  // no windows, no pillars
     s.texture_seed = static_cast<std::uint32_t>(w_.seed * 2654435761u + 0x3A11u);
-    for (std::size_t k = 1; k < p.pts.size(); ++k) segment(p.pts[k - 1], p.pts[k], s);
+    for (std::size_t k = 1; k < p.pts.size(); ++k) place_.segment(p.pts[k - 1], p.pts[k], s);
   }
 
   World& w_;
-  RoadIndex index_;
+  ClearPlacer place_;
   const RouteWorldParams& p_;
   Scene scene_;
   const std::vector<SceneZone>& zones_;
