@@ -44,6 +44,7 @@ SECTIONS = [
     ("reloc/submap_icp.cpp", "IcpParams", "yaml", "IcpParams", ["localization.tracker.icp"]),
     ("sim/simulator.cpp", None, "y", "SimulationConfig", ["(top level)"]),
     ("sim/simulator.cpp", None, "w", "WorldParams", ["world"]),
+    ("sim/simulator.cpp", None, "rw", "RouteWorldParams", ["route_world"]),
     ("sim/simulator.cpp", None, "r", "RouteParams", ["route"]),
     ("sim/radar_model.cpp", "loadGeometry", "y", "RadarGeometry", ["radar"]),
     ("sim/radar_model.cpp", "loadPhysics", "y", "RadarPhysics", ["physics"]),
@@ -61,7 +62,7 @@ FILES = [
     ("Localization: config/localization.yaml (`radarslam localize`)",
      lambda paths: paths[0].startswith("localization")),
     ("Simulator: config/sim.yaml (`radarslam simulate --config`)",
-     lambda paths: paths[0] in ("(top level)", "world", "route", "radar", "physics")),
+     lambda paths: paths[0] in ("(top level)", "world", "route_world", "route", "radar", "physics")),
     ("Library only (no shipped command reads these from a file)", lambda paths: paths[0].startswith("(library")),
 ]
 

@@ -129,7 +129,8 @@ int runSimulate(int argc, char** argv) {
       "simulate",
       "Simulate a Navtech-like 360-degree radar driving through a procedural city and countryside; "
       "writes an Oxford Radar RobotCar-format sequence (radar/*.png, radar.timestamps, "
-      "gt/radar_odometry.csv, gt/poses.tum). Default: the >= 3 km demo route in clear weather.");
+      "gt/radar_odometry.csv, gt/poses.tum). Default: the >= 3 km demo route in clear weather; "
+      "--world network / oxford-route for worlds generated around other routes.");
   auto& c = cmd.tclap();
   TCLAP::UnlabeledValueArg<std::string> out(
       "OUT_DIR", "Output directory (with --compare-real: the output PNG)", true, "", "OUT_DIR", c);
@@ -155,6 +156,23 @@ int runSimulate(int argc, char** argv) {
   TCLAP::ValueArg<double> length("", "length-m", "Route length in metres", false, 0, "L", c);
   TCLAP::ValueArg<int> scans("", "scans", "Number of scans", false, 0, "N", c);
   TCLAP::ValueArg<int> seed("", "seed", "World/route/noise seed (default 1)", false, -1, "N", c);
+  TCLAP::ValueArg<std::string> world(
+      "", "world",
+      "grid (default: the procedural city grid and countryside loop), network (an irregular street "
+      "network: curves, a roundabout, a cul-de-sac U-turn, a loop driven both ways) or oxford-route "
+      "(the real route and timing of --route-from-gt); network and oxford-route generate the world "
+      "around the route",
+      false, "", "grid|network|oxford-route", c);
+  TCLAP::ValueArg<std::string> scene(
+      "", "scene",
+      "Scene beside the road for network/oxford-route: mixed (default: one per area, plus a 300-400 m "
+      "featureless wall on one long straight), urban, suburban, country, carpark, avenue or wall",
+      false, "", "NAME", c);
+  TCLAP::ValueArg<std::string> route_from_gt(
+      "", "route-from-gt",
+      "Oxford gt/radar_odometry.csv whose chained poses and scan times are the route (implies "
+      "--world oxford-route; the file is read, never copied)",
+      false, "", "CSV", c);
   cmd.parse(argc, argv);
 
   sim::SimulationConfig config;
@@ -177,6 +195,24 @@ int runSimulate(int argc, char** argv) {
   }
   if (traversal.isSet()) config.traversal = traversal.getValue();
   if (config.traversal < 1 || config.traversal > 2) throw InputError("--traversal", "must be 1 or 2");
+  if (world.isSet()) config.world_type = world.getValue();
+  if (route_from_gt.isSet()) {
+    config.route_from_gt = route_from_gt.getValue();
+    if (!world.isSet()) config.world_type = "oxford-route";
+  }
+  const sim::WorldType world_type = sim::parseWorldType(config.world_type, "--world");
+  if (scene.isSet()) config.scene = scene.getValue();
+  sim::parseScene(config.scene, "--scene");
+  if (world_type != sim::WorldType::OxfordRoute && route_from_gt.isSet())
+    throw InputError("--route-from-gt", "only with --world oxford-route");
+  if (world_type == sim::WorldType::OxfordRoute) {
+    if (config.route_from_gt.empty())
+      throw InputError("--route-from-gt", "required with --world oxford-route");
+    if (config.length_m > 0) throw InputError("--length-m", "not with --world oxford-route (use --scans)");
+    std::error_code ec;
+    if (!fs::is_regular_file(followSymlinks(config.route_from_gt), ec))
+      throw InputError("--route-from-gt", config.route_from_gt + ": not a readable file");
+  }
   if (!weather.getValue().empty()) config.weather = weather.getValue();
   sim::weatherPreset(config.weather);  // validates the name
   if (azimuths.isSet()) config.geometry.azimuths = azimuths.getValue();
@@ -225,6 +261,8 @@ int runSimulate(int argc, char** argv) {
       s.scans, s.length_m / 1000, config.weather.c_str(), config.traversal,
       static_cast<unsigned long long>(config.seed), s.loops, s.opposite_loops, s.wall_seconds,
       s.wall_seconds > 0 ? static_cast<double>(s.scans) / s.wall_seconds : 0.0, out.getValue().c_str());
+  if (world_type != sim::WorldType::Grid)
+    std::printf("world: %s, scene %s\n", config.world_type.c_str(), config.scene.c_str());
   return 0;
 }
 

@@ -10,17 +10,13 @@ namespace radarslam::sim {
 
 namespace {
 
-struct Waypoint {
-  Vec2 p;
-  double radius = 9;     // corner radius at this vertex
-  double speed_in = 11;  // speed limit on the leg arriving here
-  bool intersection = false;
-};
+using Waypoint = RouteWaypoint;
 
 struct RawPoint {
   Vec2 p;
   double speed_limit;
   double dwell_s = 0;
+  double half_width = 6;
 };
 
 Vec2 unit(Vec2 v) {
@@ -72,12 +68,13 @@ std::vector<Waypoint> tourWaypoints(const World& w, const RouteParams& p) {
 /// Centreline through the waypoints with circular fillets at the corners; marks stops.
 std::vector<RawPoint> filletedPath(const std::vector<Waypoint>& wps, const RouteParams& p, Rng& rng) {
   std::vector<RawPoint> out;
-  out.push_back({wps[0].p, wps.size() > 1 ? wps[1].speed_in : 0.0});
+  out.push_back(
+      {wps[0].p, wps.size() > 1 ? wps[1].speed_in : 0.0, 0.0, wps.size() > 1 ? wps[1].half_width : 6.0});
   for (std::size_t k = 1; k < wps.size(); ++k) {
     const Waypoint& w = wps[k];
     const double speed = w.speed_in;
     if (k + 1 == wps.size()) {
-      out.push_back({w.p, speed});
+      out.push_back({w.p, speed, 0.0, w.half_width});
       break;
     }
     const Vec2 d1 = unit(w.p - wps[k - 1].p), d2 = unit(wps[k + 1].p - w.p);
@@ -85,9 +82,9 @@ std::vector<RawPoint> filletedPath(const std::vector<Waypoint>& wps, const Route
     if (phi < 0.05) {  // straight through: maybe a stop line before the intersection
       if (w.intersection && rng.chance(p.stop_probability)) {
         const double before = std::min(12.0, 0.4 * (w.p - wps[k - 1].p).norm());
-        out.push_back({w.p - d1 * before, speed, rng.uniform(p.stop_min_s, p.stop_max_s)});
+        out.push_back({w.p - d1 * before, speed, rng.uniform(p.stop_min_s, p.stop_max_s), w.half_width});
       }
-      out.push_back({w.p, speed});
+      out.push_back({w.p, speed, 0.0, w.half_width});
       continue;
     }
     const double len_in = (w.p - wps[k - 1].p).norm(), len_out = (wps[k + 1].p - w.p).norm();
@@ -103,7 +100,8 @@ std::vector<RawPoint> filletedPath(const std::vector<Waypoint>& wps, const Route
     for (int q = 0; q <= steps; ++q) {
       const double a = sign * phi * q / steps;
       const Vec2 r{r0.x * std::cos(a) - r0.y * std::sin(a), r0.x * std::sin(a) + r0.y * std::cos(a)};
-      out.push_back({centre + r, q == 0 ? speed : wps[k + 1].speed_in});
+      out.push_back({centre + r, q == 0 ? speed : wps[k + 1].speed_in, 0.0,
+                     q == 0 ? w.half_width : wps[k + 1].half_width});
     }
   }
   return out;
@@ -180,10 +178,10 @@ Route buildRoute(const std::vector<RawPoint>& raw, const RouteParams& p, double 
 
 }  // namespace
 
-Route planRoute(const World& world, const RouteParams& params, std::uint64_t seed, int traversal,
-                double min_length_m, double min_duration_s) {
+Route planRouteThrough(const std::vector<RouteWaypoint>& lap, const RouteParams& params, std::uint64_t seed,
+                       int traversal, double min_length_m, double min_duration_s) {
   if (traversal < 1) throw std::invalid_argument("traversal must be >= 1");
-  const std::vector<Waypoint> lap = tourWaypoints(world, params);
+  if (lap.size() < 2) throw std::invalid_argument("a route needs at least two waypoints");
   const double lane = traversal == 1 ? params.lane_offset_m : params.lane_offset_traversal2_m;
   Route route;
   for (int laps = 1; laps <= 50; ++laps) {
@@ -199,6 +197,30 @@ Route planRoute(const World& world, const RouteParams& params, std::uint64_t see
   const double start = params.start_time_s + (traversal - 1) * params.traversal2_delay_s;
   route.start_stamp = static_cast<StampNs>(std::llround(start * 1e6)) * kNsPerUs;
   return route;
+}
+
+Route planRoute(const World& world, const RouteParams& params, std::uint64_t seed, int traversal,
+                double min_length_m, double min_duration_s) {
+  if (traversal < 1) throw std::invalid_argument("traversal must be >= 1");
+  return planRouteThrough(tourWaypoints(world, params), params, seed, traversal, min_length_m,
+                          min_duration_s);
+}
+
+std::vector<RoadPiece> roadCentreline(const std::vector<RouteWaypoint>& lap, const RouteParams& params,
+                                      double max_piece_m) {
+  Rng rng(0);  // stops only add points on the centreline
+  const std::vector<RawPoint> raw = filletedPath(lap, params, rng);
+  std::vector<RoadPiece> pieces;
+  for (std::size_t k = 1; k < raw.size(); ++k) {
+    const Vec2 a = raw[k - 1].p, e = raw[k].p - a;
+    const double len = e.norm();
+    if (len < 1e-9) continue;
+    const int n = std::max(1, static_cast<int>(std::ceil(len / max_piece_m)));
+    for (int q = 0; q < n; ++q)
+      pieces.push_back({a + e * (static_cast<double>(q) / n), a + e * (static_cast<double>(q + 1) / n),
+                        raw[k].half_width});
+  }
+  return pieces;
 }
 
 namespace {

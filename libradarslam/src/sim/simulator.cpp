@@ -7,8 +7,17 @@
 #include "radarslam/core/input_file.h"
 #include "radarslam/core/yaml_params.h"
 #include "radarslam/io/oxford_writer.h"
+#include "radarslam/sim/gt_route.h"
+#include "radarslam/sim/street_network.h"
 
 namespace radarslam::sim {
+
+WorldType parseWorldType(const std::string& name, const std::string& option) {
+  if (name == "grid") return WorldType::Grid;
+  if (name == "network") return WorldType::Network;
+  if (name == "oxford-route") return WorldType::OxfordRoute;
+  throw InputError(option, "unknown world '" + name + "' (grid, network, oxford-route)");
+}
 
 void loadSimulationConfig(const std::string& path, SimulationConfig& c) {
   requireRegularFile(path);
@@ -21,6 +30,9 @@ void loadSimulationConfig(const std::string& path, SimulationConfig& c) {
   y.get("scans", c.scans, Range::closed(0, 100000));
   y.get("length_m", c.length_m, Range::closed(0, 100000.0));
   y.get("png_compression", c.png_compression, Range::closed(0, 9));
+  y.get("world_type", c.world_type);
+  y.get("scene", c.scene);
+  y.get("route_from_gt", c.route_from_gt);
   const YamlParams w = y.section("world");
   w.get("blocks_x", c.world.blocks_x, Range::closed(1, 50));
   w.get("blocks_y", c.world.blocks_y, Range::closed(1, 50));
@@ -34,6 +46,11 @@ void loadSimulationConfig(const std::string& path, SimulationConfig& c) {
   w.get("moving_vehicles", c.world.moving_vehicles, Range::closed(0, 1000));
   w.get("countryside_extent_m", c.world.countryside_extent_m, Range::closed(50, 10000.0));
   w.get("corridor_facade_period_m", c.world.corridor_facade_period_m, Range::closed(1, 1000));
+  const YamlParams rw = y.section("route_world");
+  rw.get("margin_m", c.route_world.margin_m, Range::closed(0.1, 10));
+  rw.get("scene_cell_m", c.route_world.scene_cell_m, Range::closed(20, 5000));
+  rw.get("road_half_width_m", c.route_world.road_half_width_m, Range::closed(2, 30));
+  rw.get("wall_length_m", c.route_world.wall_length_m, Range::closed(300, 400));
   const YamlParams r = y.section("route");
   r.get("lane_offset_m", c.route.lane_offset_m, Range::closed(-20, 20));
   r.get("lane_offset_traversal2_m", c.route.lane_offset_traversal2_m, Range::closed(-20, 20));
@@ -57,16 +74,57 @@ void loadSimulationConfig(const std::string& path, SimulationConfig& c) {
   if (c.world.street_half_width_max_m < c.world.street_half_width_min_m)
     w.fail("street_half_width_max_m", "must be >= street_half_width_min_m");
   if (c.route.stop_max_s < c.route.stop_min_s) r.fail("stop_max_s", "must be >= stop_min_s");
+  try {
+    parseWorldType(c.world_type, "world_type");
+  } catch (const InputError&) {
+    y.fail("world_type", "must be grid, network or oxford-route");
+  }
+  try {
+    parseScene(c.scene, "scene");
+  } catch (const InputError&) {
+    y.fail("scene", "must be mixed, urban, suburban, country, carpark, avenue or wall");
+  }
 }
 
 Simulation::Simulation(const SimulationConfig& config) : config_(config) {
   if (config.traversal < 1 || config.traversal > 2) throw InputError("--traversal", "must be 1 or 2");
-  world_ = generateWorld(config.world, config.seed, config.traversal);
+  const WorldType type = parseWorldType(config.world_type);
+  const Scene scene = parseScene(config.scene);
   const double period_s = 1.0 / config.geometry.rotation_hz;
   const double min_duration = config.scans > 0 ? (config.scans + 1) * period_s : 0.0;
-  route_ = planRoute(world_, config.route, config.seed, config.traversal, config.length_m, min_duration);
-  num_scans_ = config.scans > 0 ? static_cast<std::size_t>(config.scans)
-                                : static_cast<std::size_t>(std::max(0.0, route_.duration() / period_s - 1.0));
+  if (type == WorldType::Grid) {
+    world_ = generateWorld(config.world, config.seed, config.traversal);
+    route_ = planRoute(world_, config.route, config.seed, config.traversal, config.length_m, min_duration);
+  } else if (type == WorldType::Network) {
+    const StreetNetwork net = generateStreetNetwork(config.seed, config.route);
+    world_ = generateRouteWorld(roadCentreline(net.lap, config.route), config.route_world, config.world,
+                                scene, scene == Scene::Mixed ? net.zones : std::vector<SceneZone>{},
+                                config.seed, config.traversal);
+    route_ =
+        planRouteThrough(net.lap, config.route, config.seed, config.traversal, config.length_m, min_duration);
+  } else {
+    if (config.route_from_gt.empty())
+      throw InputError("--route-from-gt", "--world oxford-route needs the ground truth CSV to drive");
+    if (config.length_m > 0) throw InputError("--length-m", "not with --world oxford-route (use --scans)");
+    GroundTruthRoute g = routeFromOxfordGroundTruth(config.route_from_gt, config.route, config.traversal,
+                                                    config.route_world.road_half_width_m);
+    const std::vector<SceneZone> zones =
+        scene == Scene::Mixed ? longStraightWallZones(g.roads, config.route_world.wall_length_m)
+                              : std::vector<SceneZone>{};
+    world_ = generateRouteWorld(g.roads, config.route_world, config.world, scene, zones, config.seed,
+                                config.traversal);
+    route_ = std::move(g.route);
+    scan_starts_ = std::move(g.scan_starts);
+    if (config.scans > 0 && static_cast<std::size_t>(config.scans) > scan_starts_.size())
+      throw InputError("--scans",
+                       "the ground-truth route has only " + std::to_string(scan_starts_.size()) + " scans");
+  }
+  if (!scan_starts_.empty())
+    num_scans_ = config.scans > 0 ? static_cast<std::size_t>(config.scans) : scan_starts_.size();
+  else
+    num_scans_ = config.scans > 0
+                     ? static_cast<std::size_t>(config.scans)
+                     : static_cast<std::size_t>(std::max(0.0, route_.duration() / period_s - 1.0));
   renderer_ = std::make_unique<RadarRenderer>(
       world_, route_, config.geometry, config.physics, weatherPreset(config.weather),
       config.seed * 31 + static_cast<std::uint64_t>(config.traversal));
@@ -75,6 +133,7 @@ Simulation::Simulation(const SimulationConfig& config) : config_(config) {
 Simulation::~Simulation() = default;
 
 StampNs Simulation::scanStart(std::size_t i) const {
+  if (!scan_starts_.empty()) return scan_starts_.at(i);
   const StampNs period_us = config_.geometry.scanPeriodNs() / kNsPerUs;
   return route_.start_stamp + static_cast<StampNs>(i) * period_us * kNsPerUs;
 }

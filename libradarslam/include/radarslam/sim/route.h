@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "radarslam/core/trajectory.h"
+#include "radarslam/sim/road.h"
 #include "radarslam/sim/world.h"
 
 namespace radarslam::sim {
@@ -52,6 +53,28 @@ class Route {
   /// Time (UNIX ns) at which the route reaches arc length s.
   StampNs stampAtDistance(double s) const;
 };
+
+/// A vertex of a tour: the route goes straight from vertex to vertex, with a circular fillet of
+/// `radius` at each corner, at most `speed_in` on the leg arriving here, and maybe a stop before
+/// an intersection crossed straight (RouteParams::stop_probability).
+struct RouteWaypoint {
+  Vec2 p;
+  double radius = 9;
+  double speed_in = 11;
+  bool intersection = false;
+  double half_width = 6;  ///< of the road on the leg arriving here (route worlds)
+};
+
+/// The route along laps of `lap` (which must end where it starts for laps to chain) until it is
+/// at least `min_length_m` long and lasts at least `min_duration_s`; speed profile from `params`
+/// (limits, lateral acceleration in turns, acceleration, stops), lane offset per traversal.
+Route planRouteThrough(const std::vector<RouteWaypoint>& lap, const RouteParams& params, std::uint64_t seed,
+                       int traversal, double min_length_m = 0, double min_duration_s = 0);
+
+/// The road centreline of one lap (the same fillets as the route, no lane offset), as pieces of
+/// at most `max_piece_m` carrying the half-width of their leg.
+std::vector<RoadPiece> roadCentreline(const std::vector<RouteWaypoint>& lap, const RouteParams& params,
+                                      double max_piece_m = 4.0);
 
 /// The route for traversal 1 or 2 of `world`: laps of the tour until it is at least
 /// `min_length_m` long and lasts at least `min_duration_s` (then it ends with a stop).

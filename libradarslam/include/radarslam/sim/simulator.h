@@ -8,9 +8,18 @@
 
 #include "radarslam/sim/radar_model.h"
 #include "radarslam/sim/route.h"
+#include "radarslam/sim/route_world.h"
 #include "radarslam/sim/world.h"
 
 namespace radarslam::sim {
+
+/// grid: the procedural city and countryside (world.h, the default); network: an irregular street
+/// network (street_network.h); oxford-route: the route of a real Oxford ground truth (gt_route.h).
+/// The last two generate their world around the route (route_world.h).
+enum class WorldType { Grid, Network, OxfordRoute };
+
+/// "grid", "network", "oxford-route" -> WorldType; anything else is an InputError naming `option`.
+WorldType parseWorldType(const std::string& name, const std::string& option = "--world");
 
 struct SimulationConfig {
   std::uint64_t seed = 1;         ///< valid [0, 2147483647]
@@ -19,14 +28,20 @@ struct SimulationConfig {
   int scans = 0;                  ///< > 0: exactly this many scans; valid [0, 100000]
   double length_m = 0;      ///< > 0: route length (0 and scans 0: the full demo tour); valid [0, 100000]
   int png_compression = 1;  ///< valid [0, 9]
+  std::string world_type = "grid";  ///< grid, network, oxford-route
+  std::string scene =
+      "mixed";  ///< network/oxford-route: mixed, urban, suburban, country, carpark, avenue, wall
+  std::string route_from_gt = "";  ///< oxford-route: an Oxford gt/radar_odometry.csv (never copied)
   WorldParams world;
+  RouteWorldParams route_world;
   RouteParams route;
   RadarGeometry geometry;
   RadarPhysics physics;
 };
 
-/// Overrides `config` from a YAML file with sections world, route, radar, physics and top-level
-/// keys seed, traversal, weather, scans, length_m, png_compression. Unknown keys are errors.
+/// Overrides `config` from a YAML file with sections world, route_world, route, radar, physics and
+/// top-level keys seed, traversal, weather, scans, length_m, png_compression, world_type, scene,
+/// route_from_gt. Unknown keys are errors.
 void loadSimulationConfig(const std::string& path, SimulationConfig& config);
 
 class Simulation {
@@ -51,6 +66,7 @@ class Simulation {
   World world_;
   Route route_;
   std::size_t num_scans_ = 0;
+  std::vector<StampNs> scan_starts_;  ///< oxford-route: the real scan times (else a fixed period)
   std::unique_ptr<RadarRenderer> renderer_;
 };
 

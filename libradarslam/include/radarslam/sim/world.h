@@ -90,6 +90,7 @@ class World {
   std::vector<double> half_width_x, half_width_y;
   std::vector<Vec2> country_road;  ///< polyline from node(nx-1,1) to node(nx-1,ny-1)
   int corridor_row = 0;            ///< the W-E street lined with identical facades
+  std::vector<Vec2> road_points;   ///< route worlds (route_world.h): centreline vertices (index bounds)
 
   Vec2 node(int i, int j) const { return {street_x.at(i), street_y.at(j)}; }
   int streetsX() const { return static_cast<int>(street_x.size()); }
