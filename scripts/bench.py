@@ -64,8 +64,10 @@ def run(cmd, log):
 
 def simulate(exe, seq, scans, traversal, weather, out, log):
     """Simulates into `out` unless it already holds the same simulation."""
+    shared = os.path.join(os.path.dirname(ROOT), "shared")
+    extra = [str(a).replace("SHARED/", shared + "/") for a in seq["simulate"]]
     args = ["--seed", str(seq["seed"]), "--scans", str(scans), "--weather", weather,
-            "--traversal", str(traversal)] + [str(a) for a in seq["simulate"]]
+            "--traversal", str(traversal)] + extra
     stamp = os.path.join(out + ".args")
     if os.path.isdir(out) and os.path.exists(stamp):
         with open(stamp, encoding="utf-8") as f:

@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   mrpt-apps  # rawlog-edit: test_cli_mrpt_plugin reads our rawlogs with MRPT's own tool
   systemd dpkg-dev  # systemd-analyze verify and dpkg-shlibdeps: test/install/test_install.sh
+  python3 python3-yaml  # scripts/bench.py (the bench_reduced test), scripts/parameters_doc.py
 )
 missing=()
 for p in "${packages[@]}"; do

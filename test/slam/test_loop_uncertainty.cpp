@@ -5,6 +5,7 @@
 
 #include <Eigen/LU>
 #include <cmath>
+#include <random>
 
 #include "graph_optimiser.h"
 #include "loop_uncertainty.h"
@@ -90,6 +91,27 @@ TEST(LoopInformation, EstimatedKeepsTheAlignmentsDegeneracyAndTheModelFloor) {
   EXPECT_NEAR(info(1, 1), 1 / (p.loop_sigma_xy_m * p.loop_sigma_xy_m), 1.0);  // across: the floor
   p.loop_information_estimated = false;
   EXPECT_NEAR(loopInformation(wall, p)(0, 0), 1 / (p.loop_sigma_xy_m * p.loop_sigma_xy_m), 1e-9);
+}
+
+TEST(DriftScaleEstimator, RecoversHowMuchMoreTheOdometryDriftsAndIgnoresAFewFalseLoops) {
+  // Corrections drawn from a model 9x more uncertain than the unit one: unit NIS = 9 chi2(3).
+  std::mt19937 rng(5);
+  std::chi_squared_distribution<double> chi2(3);
+  DriftScaleEstimator est;
+  for (int i = 0; i < 400; ++i) est.add(9 * chi2(rng));
+  for (int i = 0; i < 40; ++i) est.add(1e6);  // false loops 10 % of the verified ones
+  EXPECT_NEAR(est.scale(), 9 * 1.1, 9 * 0.25);
+}
+
+TEST(DriftScaleEstimator, NeverBelowThePriorAndNotBeforeEnoughLoops) {
+  DriftScaleEstimator est(5);
+  for (int i = 0; i < 4; ++i) est.add(1000);
+  EXPECT_DOUBLE_EQ(est.scale(), 1.0);
+  est.add(1000);
+  EXPECT_GT(est.scale(), 100.0);
+  DriftScaleEstimator good;
+  for (int i = 0; i < 50; ++i) good.add(0.1);
+  EXPECT_DOUBLE_EQ(good.scale(), 1.0);
 }
 
 }  // namespace

@@ -29,7 +29,8 @@ bool optimiseAndCorrect(SlamState& state, const SlamParams& params) {
       if (kf.session_start) continue;
       graph.addOdometryEdge(
           i - 1, i, kf.odom_edge,
-          odometryInformation(params.odometry_edges, std::hypot(kf.odom_edge.x, kf.odom_edge.y), kf.lost));
+          odometryInformation(params.odometry_edges, std::hypot(kf.odom_edge.x, kf.odom_edge.y), kf.lost) /
+              state.odometry_variance_scale);
       loop_of_edge.push_back(static_cast<std::size_t>(-1));
     }
     if (!state.anchored) return false;  // the new session is not connected to the map yet

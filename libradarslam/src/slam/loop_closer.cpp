@@ -95,7 +95,8 @@ void LoopCloser::process(std::uint64_t id) {
         if (chi2_gate) {  // the chi2 ellipse's largest position semi-axis, plus the loop's own floor
           const Eigen::Matrix2d pos = chainCovarianceTo(c.keyframe).topLeftCorner<2, 2>();
           const double var = pos.allFinite() ? pos.eigenvalues().real().maxCoeff() : 1e18;
-          bound = std::sqrt(lc.drift_gate_chi2 * (var + lc.loop_sigma_xy_m * lc.loop_sigma_xy_m));
+          bound = std::sqrt(lc.drift_gate_chi2 *
+                            (state_.odometry_variance_scale * var + lc.loop_sigma_xy_m * lc.loop_sigma_xy_m));
         }
         return std::hypot(q.x - m.x, q.y - m.y) > lc.verifier.max_translation_m + bound;
       });
@@ -130,8 +131,11 @@ void LoopCloser::process(std::uint64_t id) {
       const Eigen::Matrix3d& loop_information = rec.information;
       if (v.accepted && chi2_gate) {
         const TPose2D estimated = between(state_.keyframes[rec.match].pose, q);
-        const double d2 = correctionMahalanobis2(v.relative_pose, estimated, chainCovarianceTo(rec.match),
-                                                 loop_information);
+        const Eigen::Matrix3d chain_cov = chainCovarianceTo(rec.match);
+        drift_scale_.add(correctionMahalanobis2(v.relative_pose, estimated, chain_cov, loop_information));
+        state_.odometry_variance_scale = drift_scale_.scale();
+        const double d2 = correctionMahalanobis2(
+            v.relative_pose, estimated, state_.odometry_variance_scale * chain_cov, loop_information);
         if (d2 > lc.drift_gate_chi2) {
           state_.records.back().accepted = false;
           state_.records.back().reason =

@@ -3,6 +3,7 @@
 // kd-tree of earlier keyframes (recent ones excluded), geometric verification of the best
 // candidates (loop/loop_verifier.h: global consensus search, ICP, uniqueness test), and for an
 // accepted loop the pose-graph optimisation when the loop disagrees with the current estimate.
+#include "loop_uncertainty.h"
 #include "radarslam/loop/loop_detector.h"
 #include "slam_state.h"
 
@@ -27,7 +28,8 @@ class LoopCloser {
   const SlamParams& params_;
   LoopDetector detector_;
   std::unique_ptr<LoopDetector> map_detector_;
-  bool previous_closed_loop_ = false;  ///< the loaded map's keyframes (extending only)
+  bool previous_closed_loop_ = false;
+  DriftScaleEstimator drift_scale_;  ///< the loaded map's keyframes (extending only)
 };
 
 }  // namespace radarslam::slam_detail

@@ -1,6 +1,7 @@
 #include "loop_uncertainty.h"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -70,6 +71,17 @@ Eigen::Matrix3d ChainCovariance::relativeTo(std::uint64_t m) const {
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
   R.topLeftCorner<2, 2>() << c, -s, s, c;
   return R.transpose() * cov * R;
+}
+
+void DriftScaleEstimator::add(double unit_mahalanobis2) {
+  if (!std::isfinite(unit_mahalanobis2)) return;
+  samples_.push_back(unit_mahalanobis2);
+  if (samples_.size() < min_samples_) return;
+  std::vector<double> s = samples_;
+  auto mid = s.begin() + static_cast<std::ptrdiff_t>(s.size() / 2);
+  std::nth_element(s.begin(), mid, s.end());
+  constexpr double kChi2Median3 = 2.366;  // median of chi^2 with 3 degrees of freedom
+  scale_ = std::max(1.0, *mid / kChi2Median3);
 }
 
 double correctionMahalanobis2(const TPose2D& loop_relative, const TPose2D& estimated_relative,

@@ -4,6 +4,8 @@
 // accumulated along the keyframe chain, not from constants.
 #include <Eigen/Core>
 
+#include <vector>
+
 #include "radarslam/slam/slam_params.h"
 #include "slam_state.h"
 
@@ -41,6 +43,24 @@ class ChainCovariance {
   std::uint64_t first_ = 0;
   std::vector<Prefix> prefix_;  ///< sums over edges (first, first + k]
   std::vector<TPose2D> chain_;  ///< keyframe first + k in first's frame, by odometry alone
+};
+
+/// How much more the odometry drifts than its edge covariances say, from the verified loops
+/// themselves (the way KISS-ICP sets its correspondence bound from its model's running error): a
+/// loop's squared Mahalanobis correction under the unit chain covariance is, for a consistent model,
+/// chi^2(3)-distributed, so the scale is median / median(chi^2(3)) = median / 2.366. The median
+/// keeps it robust to the false loops among the verified ones; at least `min_samples` loops before
+/// it moves; never below 1 (the parameters are the prior).
+class DriftScaleEstimator {
+ public:
+  explicit DriftScaleEstimator(std::size_t min_samples = 5) : min_samples_(min_samples) {}
+  void add(double unit_mahalanobis2);
+  double scale() const { return scale_; }
+
+ private:
+  std::size_t min_samples_;
+  std::vector<double> samples_;
+  double scale_ = 1.0;
 };
 
 /// The drift gate: the squared Mahalanobis distance between the loop's relative pose and the

@@ -212,7 +212,8 @@ struct RadarSlam::Impl {
       e.to = kf.id;
       e.relative = kf.odom_edge;
       const Eigen::Matrix3d info =
-          odometryInformation(params.odometry_edges, std::hypot(kf.odom_edge.x, kf.odom_edge.y), kf.lost);
+          odometryInformation(params.odometry_edges, std::hypot(kf.odom_edge.x, kf.odom_edge.y), kf.lost) /
+          state.odometry_variance_scale;
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) e.information[3 * r + c] = info(r, c);
       e.kind = EdgeKind::Odometry;

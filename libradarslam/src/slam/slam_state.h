@@ -85,8 +85,12 @@ struct SlamState {
   /// are in its own odometry frame until loop closing anchors it to the map (anchored = true).
   std::uint64_t session_first = 0;
   bool anchored = true;
+  /// The odometry edges' covariance (OdometryEdgeParams) times this: estimated from the verified
+  /// loops (DriftScaleEstimator, slam/loop_uncertainty.h) so that odometry that drifts more than the
+  /// parameters say gets the uncertainty it has, in the drift gate and in the pose graph.
+  double odometry_variance_scale = 1.0;
   std::uint64_t anchor_keyframe = 0;  ///< the new session's keyframe whose loop anchored it
-  double anchor_travelled_m = 0;  ///< the anchoring keyframe's travelled_m (drift bound to map keyframes)
+  double anchor_travelled_m = 0;      ///< the anchoring keyframe's travelled_m (drift bound to map keyframes)
   SlamStats stats;
 };
 
