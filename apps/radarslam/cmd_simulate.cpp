@@ -79,13 +79,13 @@ int compareReal(const fs::path& real_dir, const fs::path& out_png, sim::Simulati
   return 0;
 }
 
-/// True if `dir` holds nothing but what a simulation writes (radar/*.png, radar.timestamps,
+/// True if `dir` holds nothing but what a simulation writes (radar/*.png, radar.timestamps, radar.geometry,
 /// gt/radar_odometry.csv, gt/poses.tum, hidden temporaries): only such a directory is replaced.
 bool onlySimulationOutput(const fs::path& dir) {
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
-    if (name == "radar.timestamps" && e.is_regular_file(ec)) continue;
+    if ((name == "radar.timestamps" || name == "radar.geometry") && e.is_regular_file(ec)) continue;
     if ((name == "radar" || name == "gt") && e.is_directory(ec) && !e.is_symlink(ec)) {
       for (const auto& f : fs::directory_iterator(e.path(), ec)) {
         const std::string n = f.path().filename().string();
