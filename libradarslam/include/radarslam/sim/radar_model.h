@@ -6,9 +6,10 @@
 //     through foliage/fences/cars);
 //  2. each hit's power (reflectivity x texture x incidence law x range loss x weather
 //     attenuation) is spread over neighbouring azimuths by the antenna pattern (Gaussian main lobe,
-//     ~1.8 deg 3 dB, plus far sidelobes for strong targets) and over range bins by the range
+//     1.27 deg two-way 3 dB, plus far sidelobes for strong targets) and over range bins by the range
 //     response and the target's depth; specular walls add multipath ghosts behind them;
-//  3. noise floor (range dependent, per-azimuth gain jitter), near-range clutter, receiver
+//  3. echoes and ground clutter (lit by the fan beam's elevation pattern) pass the near-field
+//     gain ramp (STC); noise floor (per-azimuth gain jitter), housing clutter, receiver
 //     saturation streaks and weather clutter are added; the result is multiplied by a speckle
 //     field (complex Gaussian, correlated along range and azimuth) and compressed to 8 bit the way
 //     the Navtech does (about 20*log10 of an integer amplitude, in 1 dB-like steps).
@@ -77,8 +78,9 @@ struct RadarPhysics {
   double ground_texture_peak = 20;  ///< valid [0, 1e+6]
   double ground_texture_power = 8;  ///< valid [0, 100]
   /// Elevation pattern of the fan beam: two-way gain exp(-0.5 (psi / sigma)^2) at depression
-  /// angle psi = atan(mount_height / range), sigma from this 3 dB width below the horizon. The
-  /// ground under the radar is outside the beam; it is lit from ~h / tan(width) on. 0 = off.
+  /// angle psi = atan(mount_height / range), sigma = this full 3 dB width / 2.355 (pattern centred
+  /// on the horizon, half power at psi = width / 2). The ground under the radar is outside the
+  /// beam; with 2 m and 10 deg it reaches half power at ~23 m. 0 = off.
   double elevation_beam_width_deg = 10;  ///< valid [0, 90]
   double mount_height_m = 2.0;           ///< antenna height above the road; valid (0, 100]
   /// Sensitivity time control: the receiver gain rises as (range / stc_range_m)^stc_exponent up
