@@ -45,7 +45,7 @@ struct RadarPhysics {
   double beam_width_deg =
       1.27;  ///< two-way 3 dB width of the main lobe (1.8 deg one-way / sqrt 2); valid (0, 90]
   int rays_per_azimuth = 4;         ///< sub-rays traced per azimuth; valid [1, 64]
-  double sidelobe_db = -45;         ///< far sidelobe level relative to the main lobe; valid [-200, 0]
+  double sidelobe_db = -65;         ///< far sidelobe level relative to the main lobe; valid [-200, 0]
   double sidelobe_extent_deg = 10;  ///< far sidelobes reach this far either side; valid [0, 180]
   double power_scale = 2.4e10;      ///< received power of a unit target at 1 m; valid (0, 1e+20]
   double range_exponent = 0.4;      ///< power falls as range^-exponent; valid [0, 10]
@@ -75,8 +75,8 @@ struct RadarPhysics {
   double ground_texture_m = 0.7;  ///< ground patches (stable across scans); valid (0, 1000]
   /// Patch reflectivity 0.02 + ground_texture_peak * u^ground_texture_power (u uniform): most
   /// of the road is dark, a few patches (kerbs, drains, grass tufts) are bright scatterers.
-  double ground_texture_peak = 20;  ///< valid [0, 1e+6]
-  double ground_texture_power = 8;  ///< valid [0, 100]
+  double ground_texture_peak = 6;   ///< valid [0, 1e+6]
+  double ground_texture_power = 6;  ///< valid [0, 100]
   /// Elevation pattern of the fan beam: two-way gain exp(-0.5 (psi / sigma)^2) at depression
   /// angle psi = atan(mount_height / range), sigma = this full 3 dB width / 2.355 (pattern centred
   /// on the horizon, half power at psi = width / 2). The ground under the radar is outside the
