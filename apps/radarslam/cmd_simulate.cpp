@@ -10,6 +10,7 @@
 #include <radarslam/core/output_path.h>
 #include <radarslam/io/dataset.h>
 #include <radarslam/radar/cartesian.h>
+#include <radarslam/sim/realism_statistics.h>
 #include <radarslam/sim/scan_statistics.h>
 #include <radarslam/sim/simulator.h>
 
@@ -39,11 +40,13 @@ int compareReal(const fs::path& real_dir, const fs::path& out_png, sim::Simulati
   const auto reader = openDataset(real_dir);
   if (reader->size() == 0) throw InputError(real_dir.string(), "no scans");
   std::vector<sim::ScanStatistics> real_stats, sim_stats;
+  std::vector<sim::RealismStatistics> real_bands, sim_bands;
   CObservationRadarScan::Ptr first_real;
   for (std::size_t i = 0; i < reader->size(); ++i) {
     const auto scan = reader->readScan(i);
     if (!first_real) first_real = scan;
     real_stats.push_back(sim::computeScanStatistics(*scan));
+    real_bands.push_back(sim::computeRealismStatistics(*scan));
   }
   // Same geometry as the real sensor; scans from the moving part of the city route.
   config.geometry.azimuths = static_cast<int>(first_real->num_azimuths);
@@ -57,11 +60,14 @@ int compareReal(const fs::path& real_dir, const fs::path& out_png, sim::Simulati
     simulation.render(i, sim_scan);
     if (i == first) shown = sim_scan;
     sim_stats.push_back(sim::computeScanStatistics(sim_scan));
+    sim_bands.push_back(sim::computeRealismStatistics(sim_scan));
   }
   const auto real = sim::averageStatistics(real_stats), simulated = sim::averageStatistics(sim_stats);
   std::cout << "real: " << real_dir.string() << " (" << count << " scans)   simulated: seed " << config.seed
             << ", " << count << " scans\n"
-            << sim::compareStatisticsTable(real, simulated);
+            << sim::compareStatisticsTable(real, simulated)
+            << "\nper range band (docs/simulator.md, Realism):\n"
+            << sim::compareRealism(sim::averageRealism(real_bands), sim::averageRealism(sim_bands)).table;
   PolarToCartesian cart(CartesianParams{.size_px = 400, .m_per_px = 0.4});
   cv::Mat side;
   cv::hconcat(labelled(cart.convert(*first_real), "real (Oxford)"),
@@ -73,13 +79,13 @@ int compareReal(const fs::path& real_dir, const fs::path& out_png, sim::Simulati
   return 0;
 }
 
-/// True if `dir` holds nothing but what a simulation writes (radar/*.png, radar.timestamps,
+/// True if `dir` holds nothing but what a simulation writes (radar/*.png, radar.timestamps, radar.geometry,
 /// gt/radar_odometry.csv, gt/poses.tum, hidden temporaries): only such a directory is replaced.
 bool onlySimulationOutput(const fs::path& dir) {
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
-    if (name == "radar.timestamps" && e.is_regular_file(ec)) continue;
+    if ((name == "radar.timestamps" || name == "radar.geometry") && e.is_regular_file(ec)) continue;
     if ((name == "radar" || name == "gt") && e.is_directory(ec) && !e.is_symlink(ec)) {
       for (const auto& f : fs::directory_iterator(e.path(), ec)) {
         const std::string n = f.path().filename().string();

@@ -1,6 +1,8 @@
 // Radar physics: determinism, motion distortion, antenna pattern, weather, config loading.
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -53,6 +55,15 @@ double meanCode(const CObservationRadarScan& s, double min_angle_deg, double max
       if (s.binRange(b) >= min_range) sum += s.row(a)[b], ++n;
   }
   return sum / static_cast<double>(n);
+}
+
+/// Fraction of code-0 bins (amplitude below the 8-bit step) at ranges >= min_range.
+double zeroFraction(const CObservationRadarScan& s, double min_range) {
+  std::size_t zeros = 0, n = 0;
+  for (std::size_t a = 0; a < s.num_azimuths; ++a)
+    for (std::size_t b = 0; b < s.num_bins; ++b)
+      if (s.binRange(b) >= min_range) zeros += s.row(a)[b] == 0, ++n;
+  return static_cast<double>(zeros) / static_cast<double>(n);
 }
 }  // namespace
 
@@ -154,8 +165,13 @@ TEST(SimRadar, SnowBlanksTheFrontAndFogRaisesTheFloor) {
   EXPECT_LT(meanCode(snow, -80, 80, 3), 0.5 * meanCode(clear, -80, 80, 3));
   EXPECT_GT(meanCode(snow, 100, 180, 3) + meanCode(snow, -180, -100, 3),
             0.7 * (meanCode(clear, 100, 180, 3) + meanCode(clear, -180, -100, 3)));
-  // Far away there is mostly noise: fog's floor is higher.
-  EXPECT_GT(meanCode(fog, -180, 180, 80), meanCode(clear, -180, 180, 80) + 1.0);
+  // Fog raises the noise floor: far away, fewer bins fall below the 8-bit step. (Measured on the
+  // floor itself; the far mean code is dominated by echoes since the Oxford calibration, and fog
+  // attenuates those.)
+  std::cout << "far zero fraction clear " << zeroFraction(clear, 80) << " fog " << zeroFraction(fog, 80)
+            << "; far mean code clear " << meanCode(clear, -180, 180, 80) << " fog "
+            << meanCode(fog, -180, 180, 80) << "\n";
+  EXPECT_LT(zeroFraction(fog, 80), 0.8 * zeroFraction(clear, 80));
   EXPECT_THROW(weatherPreset("hail"), InputError);
 }
 

@@ -1,5 +1,6 @@
 // Oxford Radar RobotCar: radar/<t_us>.png (stamp = first azimuth), radar.timestamps,
 // gt/radar_odometry.csv (FORMATS.md section 1).
+#include <cmath>
 #include <cstdlib>
 #include <string>
 
@@ -41,6 +42,31 @@ std::vector<IndexEntry> readRadarTimestamps(const std::filesystem::path& root) {
   return index;
 }
 
+/// radar.geometry of a simulated sequence whose range geometry is not Oxford's (see
+/// io/oxford_writer.h): "range_resolution_m <m>" and "range_offset_m <m>" lines.
+void readGeometryFile(const std::filesystem::path& file, OxfordStyleFormat& format) {
+  auto in = openText(file, "range geometry");
+  std::string text;
+  bool res = false, off = false;
+  for (std::size_t line_no = 1; std::getline(in, text); ++line_no) {
+    const auto line = trim(text);
+    if (line.empty()) continue;
+    const auto fields = split(line, ' ');
+    const std::string where = lineWhere(file, line_no);
+    if (fields.size() != 2) throw InputError(where, "expected '<key> <value>'");
+    const double v = parseDouble(fields[1], where, "value");
+    if (fields[0] == "range_resolution_m" && v > 0 && v <= 10)
+      format.range_resolution_m = v, res = true;
+    else if (fields[0] == "range_offset_m" && std::abs(v) <= 100)
+      format.range_offset_m = v, off = true;
+    else
+      throw InputError(where,
+                       "unknown key or value out of range (range_resolution_m in (0, 10], "
+                       "range_offset_m in [-100, 100])");
+  }
+  if (!res || !off) throw InputError(file.string(), "needs range_resolution_m and range_offset_m");
+}
+
 class OxfordReader : public FileSequenceReader {
  public:
   OxfordReader(const std::filesystem::path& root, const ReaderOptions& o, OpenFlags flags)
@@ -48,6 +74,13 @@ class OxfordReader : public FileSequenceReader {
     format_.range_resolution_m = o.range_resolution_m > 0 ? o.range_resolution_m : kOxfordResolution;
     // The SDK and yeti put bin k at (k + 0.5) * resolution: the offset is half a bin.
     format_.range_offset_m = o.range_offset_m.value_or(format_.range_resolution_m / 2);
+    // A simulated sequence of another sensor's geometry says so (explicit options still win).
+    if (const auto geo = root / "radar.geometry"; o.range_resolution_m <= 0 && std::filesystem::exists(geo)) {
+      OxfordStyleFormat f = format_;
+      readGeometryFile(geo, f);
+      format_.range_resolution_m = f.range_resolution_m;
+      format_.range_offset_m = o.range_offset_m.value_or(f.range_offset_m);
+    }
     const auto gt = root / "gt" / "radar_odometry.csv";
     if (flags.load_ground_truth && std::filesystem::exists(gt)) ground_truth_ = readOxfordGroundTruth(gt);
   }

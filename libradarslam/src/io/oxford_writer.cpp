@@ -12,6 +12,7 @@
 
 #include "radarslam/core/atomic_file.h"
 #include "radarslam/core/errors.h"
+#include "readers.h"
 
 namespace radarslam {
 
@@ -71,6 +72,11 @@ void OxfordWriter::writeScan(const CObservationRadarScan& scan, const mrpt::math
   const std::int64_t name = toMicros(scan.azimuth_stamps_ns.front());
   if (!names_us_.empty() && name <= names_us_.back())
     throw InputError(root_.string(), "scan stamps must increase (" + std::to_string(name) + ")");
+  if (names_us_.empty()) {
+    resolution_m_ = scan.range_resolution_m, offset_m_ = scan.range_offset_m;
+  } else if (scan.range_resolution_m != resolution_m_ || scan.range_offset_m != offset_m_) {
+    throw InputError(root_.string(), "all scans of a sequence must have the same range geometry");
+  }
   const auto bytes = encodeOxfordPng(scan, compression_, encoder_size_);
   writeBytesAtomically(root_ / "radar" / (std::to_string(name) + ".png"), bytes);
   names_us_.push_back(name);
@@ -78,6 +84,13 @@ void OxfordWriter::writeScan(const CObservationRadarScan& scan, const mrpt::math
 }
 
 void OxfordWriter::finish() {
+  char line[256];
+  if (!names_us_.empty() && (std::abs(resolution_m_ - io_detail::kOxfordResolution) > 1e-12 ||
+                             std::abs(offset_m_ - resolution_m_ / 2) > 1e-12)) {
+    std::snprintf(line, sizeof line, "range_resolution_m %.10g\nrange_offset_m %.10g\n", resolution_m_,
+                  offset_m_);
+    writeTextAtomically(root_ / "radar.geometry", line);
+  }
   std::string stamps;
   for (const auto t : names_us_) stamps.append(std::to_string(t)).append(" 1\n");
   writeTextAtomically(root_ / "radar.timestamps", stamps);
@@ -85,7 +98,6 @@ void OxfordWriter::finish() {
   std::string csv =
       "source_timestamp,destination_timestamp,x,y,z,roll,pitch,yaw,source_radar_timestamp,"
       "destination_radar_timestamp\n";
-  char line[256];
   for (std::size_t k = 1; k < truth_.size(); ++k) {
     const mrpt::poses::CPose2D dst(truth_[k - 1].pose), src(truth_[k].pose);
     const mrpt::poses::CPose2D rel = src - dst;  // pose of the later scan in the earlier one

@@ -83,6 +83,13 @@ void loadPhysics(const YamlParams& y, RadarPhysics& p) {
   y.get("ground_clutter_power", p.ground_clutter_power, Range::closed(0, 1e+20));
   y.get("ground_clutter_exponent", p.ground_clutter_exponent, Range::closed(0, 10));
   y.get("ground_texture_m", p.ground_texture_m, Range::above(0, 1000));
+  y.get("ground_beyond_wall", p.ground_beyond_wall, Range::closed(0, 1));
+  y.get("ground_texture_peak", p.ground_texture_peak, Range::closed(0, 1e+6));
+  y.get("ground_texture_power", p.ground_texture_power, Range::closed(0, 100));
+  y.get("elevation_beam_width_deg", p.elevation_beam_width_deg, Range::closed(0, 90));
+  y.get("mount_height_m", p.mount_height_m, Range::above(0, 100));
+  y.get("stc_range_m", p.stc_range_m, Range::above(0, 1000));
+  y.get("stc_exponent", p.stc_exponent, Range::closed(0, 40));
   y.get("code_per_octave", p.code_per_octave, Range::above(0, 100));
 }
 
@@ -147,6 +154,7 @@ struct RadarRenderer::Impl {
   std::vector<float> signal;        // azimuths x bins, linear power
   std::vector<float> floor_power;   // per bin
   std::vector<float> near_clutter;  // per bin: housing/mount returns + weather volume clutter
+  std::vector<float> stc;           // per bin: sensitivity time control gain on echoes
   std::vector<float> max_direct;    // per azimuth, strongest direct return
   std::vector<float> ground;        // azimuths x (bins / kGroundStep), ground clutter power
   static constexpr int kGroundStep = 16;
@@ -167,6 +175,7 @@ struct RadarRenderer::Impl {
     signal.resize(static_cast<std::size_t>(g.azimuths) * B);
     floor_power.resize(B);
     near_clutter.resize(B);
+    stc.resize(B);
     max_direct.resize(static_cast<std::size_t>(g.azimuths));
     ground.resize(static_cast<std::size_t>(g.azimuths) * (B / kGroundStep + 1));
     const double floor_gain = dbToLinear(weather.noise_floor_gain_db);
@@ -178,6 +187,8 @@ struct RadarRenderer::Impl {
       near_clutter[b] = static_cast<float>(
           p.near_clutter_power * (std::exp(-q * q * q * q) + 0.01 * std::exp(-q)) +
           weather.volume_clutter_power * std::exp(-range / weather.volume_clutter_range_m));
+      stc[b] =
+          static_cast<float>(range < p.stc_range_m ? std::pow(range / p.stc_range_m, p.stc_exponent) : 1.0);
     }
     // Main lobe: Gaussian with the given two-way 3 dB width, in units of the azimuth step.
     const double step_deg = 360.0 / g.azimuths;
@@ -242,6 +253,14 @@ struct RadarRenderer::Impl {
                               std::pow(std::max(range, 1.0), p.range_exponent) / p.rays_per_azimuth);
   }
 
+  /// Two-way elevation gain of the fan beam towards the ground at horizontal range r.
+  double elevationGain(double r) const {
+    if (!(p.elevation_beam_width_deg > 0)) return 1.0;
+    const double psi = std::atan2(p.mount_height_m, r) * 180.0 / std::numbers::pi;
+    const double sigma = p.elevation_beam_width_deg / (2 * std::sqrt(2 * std::log(2.0)));
+    return std::exp(-0.5 * psi * psi / (sigma * sigma));
+  }
+
   /// Ground returns of the vertical fan beam along azimuth a, up to the first wall; the texture
   /// is a hash of the world position, so the same patch of ground returns alike on every visit.
   void groundClutter(int a, Vec2 o, Vec2 d, double /*yaw*/) {
@@ -256,7 +275,8 @@ struct RadarRenderer::Impl {
     const double step = kGroundStep * g.range_resolution_m;
     for (int c = 0; c < cells; ++c) {
       const double r = (c + 0.5) * step;
-      if (r > wall) {
+      const double beyond = r > wall ? p.ground_beyond_wall : 1.0;
+      if (beyond <= 0) {
         row[c] = 0;
         continue;
       }
@@ -265,8 +285,8 @@ struct RadarRenderer::Impl {
       const auto iy = static_cast<std::int64_t>(std::floor(q.y / p.ground_texture_m));
       const double h = hashToUnit(hashCombine(hashCombine(world.seed, static_cast<std::uint64_t>(ix)),
                                               static_cast<std::uint64_t>(iy)));
-      const double tex = 0.02 + 6.0 * std::pow(h, 6.0);
-      row[c] = static_cast<float>(p.ground_clutter_power * tex *
+      const double tex = 0.02 + p.ground_texture_peak * std::pow(h, p.ground_texture_power);
+      row[c] = static_cast<float>(p.ground_clutter_power * beyond * tex * elevationGain(r) *
                                   std::pow(std::max(r, 3.0) / 10.0, -p.ground_clutter_exponent) *
                                   dbToLinear(-weather.attenuation_db_per_m * r));
     }
@@ -370,9 +390,9 @@ struct RadarRenderer::Impl {
         }
       }
       for (int b = 0; b < B; ++b) {
-        const float mean =
-            ((s[b] + near_clutter[b] + gr[b / kGroundStep]) * keep + (floor_power[b] + streak) * keep_floor) *
-            gain;
+        const float mean = (((s[b] + gr[b / kGroundStep]) * stc[b] + near_clutter[b]) * keep +
+                            (floor_power[b] + streak) * keep_floor) *
+                           gain;
         const float amp = std::min(std::sqrt(mean * (zr_cur[b] * zr_cur[b] + zi_cur[b] * zi_cur[b])), sat);
         px[b] = amplitudeCode(amp, cpo);
       }

@@ -9,6 +9,9 @@
 //                           x,y,yaw = pose of the later scan in the earlier one, source/destination
 //                           timestamps = mid-sweep times, *_radar_timestamp = file names
 //   gt/poses.tum            absolute radar poses at mid-sweep times, "t x y z qx qy qz qw" (t in s)
+//   radar.geometry          only when the range geometry is not Oxford's (0.0432 m/bin, bin
+//                           centres): "range_resolution_m <m>" and "range_offset_m <m>" lines,
+//                           because the Oxford PNG does not carry them (the Oxford reader reads it)
 // Every file is written atomically; the index and ground truth files are written last (finish()).
 #include <cstdint>
 #include <filesystem>
@@ -33,7 +36,8 @@ class OxfordWriter {
   /// absolute pose at the scan's reference (mid-sweep) time.
   void writeScan(const CObservationRadarScan& scan, const mrpt::math::TPose2D& truth);
 
-  /// Writes radar.timestamps, then gt/radar_odometry.csv and gt/poses.tum.
+  /// Writes radar.geometry (if not Oxford's), radar.timestamps, then gt/radar_odometry.csv and
+  /// gt/poses.tum.
   void finish();
 
   std::size_t scansWritten() const { return names_us_.size(); }
@@ -42,8 +46,9 @@ class OxfordWriter {
  private:
   std::filesystem::path root_;
   int compression_, encoder_size_;
-  std::vector<std::int64_t> names_us_;  // first-azimuth stamps
-  Trajectory truth_;                    // at mid-sweep times (ns)
+  double resolution_m_ = 0, offset_m_ = 0;  // of the first scan (all scans must agree)
+  std::vector<std::int64_t> names_us_;      // first-azimuth stamps
+  Trajectory truth_;                        // at mid-sweep times (ns)
 };
 
 }  // namespace radarslam

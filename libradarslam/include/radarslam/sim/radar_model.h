@@ -6,9 +6,10 @@
 //     through foliage/fences/cars);
 //  2. each hit's power (reflectivity x texture x incidence law x range loss x weather
 //     attenuation) is spread over neighbouring azimuths by the antenna pattern (Gaussian main lobe,
-//     ~1.8 deg 3 dB, plus far sidelobes for strong targets) and over range bins by the range
+//     1.27 deg two-way 3 dB, plus far sidelobes for strong targets) and over range bins by the range
 //     response and the target's depth; specular walls add multipath ghosts behind them;
-//  3. noise floor (range dependent, per-azimuth gain jitter), near-range clutter, receiver
+//  3. echoes and ground clutter (lit by the fan beam's elevation pattern) pass the near-field
+//     gain ramp (STC); noise floor (per-azimuth gain jitter), housing clutter, receiver
 //     saturation streaks and weather clutter are added; the result is multiplied by a speckle
 //     field (complex Gaussian, correlated along range and azimuth) and compressed to 8 bit the way
 //     the Navtech does (about 20*log10 of an integer amplitude, in 1 dB-like steps).
@@ -41,22 +42,23 @@ struct RadarGeometry {
 };
 
 struct RadarPhysics {
-  double beam_width_deg = 1.8;      ///< two-way 3 dB width of the antenna main lobe; valid (0, 90]
+  double beam_width_deg =
+      1.27;  ///< two-way 3 dB width of the main lobe (1.8 deg one-way / sqrt 2); valid (0, 90]
   int rays_per_azimuth = 4;         ///< sub-rays traced per azimuth; valid [1, 64]
-  double sidelobe_db = -45;         ///< far sidelobe level relative to the main lobe; valid [-200, 0]
+  double sidelobe_db = -65;         ///< far sidelobe level relative to the main lobe; valid [-200, 0]
   double sidelobe_extent_deg = 10;  ///< far sidelobes reach this far either side; valid [0, 180]
-  double power_scale = 4.0e9;       ///< received power of a unit target at 1 m; valid (0, 1e+20]
-  double range_exponent = 0.6;      ///< power falls as range^-exponent; valid [0, 10]
+  double power_scale = 2.4e10;      ///< received power of a unit target at 1 m; valid (0, 1e+20]
+  double range_exponent = 0.4;      ///< power falls as range^-exponent; valid [0, 10]
   double specular_exponent = 20;    ///< sharpness of the specular lobe (smooth surfaces); valid [0, 1000]
-  double range_psf_bins = 1.0;      ///< sigma of the range response, bins; valid [0, 100]
+  double range_psf_bins = 1.5;      ///< sigma of the range response, bins; valid [0, 100]
   double speckle_range_corr =
       0.93;  ///< correlation of the speckle field between adjacent bins; valid [0, 0.999]
-  double speckle_azimuth_corr = 0.55;   ///< ... between adjacent azimuths; valid [0, 0.999]
-  double noise_floor_power = 6.5;       ///< mean noise power (amplitude^2) far away; valid [0, 1000000000000]
-  double near_noise_power = 4.0;        ///< extra noise power close to the radar; valid [0, 1000000000000]
+  double speckle_azimuth_corr = 0.2;    ///< ... between adjacent azimuths; valid [0, 0.999]
+  double noise_floor_power = 5.5;       ///< mean noise power (amplitude^2) far away; valid [0, 1000000000000]
+  double near_noise_power = 0;          ///< extra noise power close to the radar; valid [0, 1000000000000]
   double near_noise_range_m = 60.0;     ///< e-folding range of the extra near noise; valid (0, 10000]
   double azimuth_gain_jitter_db = 1.5;  ///< per-azimuth receiver gain variation; valid [0, 60]
-  double near_clutter_power = 3.0e4;    ///< housing/mount returns in the first metres; valid [0, 1e+20]
+  double near_clutter_power = 3.0e3;    ///< housing/mount returns in the first metres; valid [0, 1e+20]
   double near_clutter_range_m = 1.6;    ///< valid [0, 1000]
   double saturation_amplitude = 6.0e6;  ///< receiver clips here (pixel ~136); valid (0, 1e+20]
   double streak_threshold_power = 1.5e8;  ///< a return this strong saturates the receiver; valid (0, 1e+30]
@@ -64,10 +66,28 @@ struct RadarPhysics {
   double streak_probability = 0.1;        ///< chance a saturating azimuth shows the streak; valid [0, 1]
   double multipath_db = -14;              ///< ghost power relative to the direct return; valid [-200, 0]
   double multipath_min_cos = 0.55;        ///< only near-normal specular walls make ghosts; valid [0, 1]
-  double ground_clutter_power = 120.0;    ///< road/grass returns of the fan beam at 10 m; valid [0, 1e+20]
+  double ground_clutter_power = 1200;     ///< road/grass returns of the fan beam at 10 m; valid [0, 1e+20]
   double ground_clutter_exponent =
-      0.8;                        ///< ...falling as range^-exponent, up to the first wall; valid [0, 10]
-  double ground_texture_m = 1.5;  ///< ground patches (stable across scans); valid (0, 1000]
+      1.2;  ///< ...falling as range^-exponent, up to the first wall; valid [0, 10]
+  /// Clutter the fan beam still sees beyond the first opaque wall (over low buildings: upper
+  /// storeys, roofs, trees), as a fraction of the ground clutter there; valid [0, 1]
+  double ground_beyond_wall = 0.05;
+  double ground_texture_m = 0.7;  ///< ground patches (stable across scans); valid (0, 1000]
+  /// Patch reflectivity 0.02 + ground_texture_peak * u^ground_texture_power (u uniform): most
+  /// of the road is dark, a few patches (kerbs, drains, grass tufts) are bright scatterers.
+  double ground_texture_peak = 6;   ///< valid [0, 1e+6]
+  double ground_texture_power = 6;  ///< valid [0, 100]
+  /// Elevation pattern of the fan beam: two-way gain exp(-0.5 (psi / sigma)^2) at depression
+  /// angle psi = atan(mount_height / range), sigma = this full 3 dB width / 2.355 (pattern centred
+  /// on the horizon, half power at psi = width / 2). The ground under the radar is outside the
+  /// beam; with 2 m and 10 deg it reaches half power at ~23 m. 0 = off.
+  double elevation_beam_width_deg = 10;  ///< valid [0, 90]
+  double mount_height_m = 2.0;           ///< antenna height above the road; valid (0, 100]
+  /// Sensitivity time control: the receiver gain rises as (range / stc_range_m)^stc_exponent up
+  /// to stc_range_m (keeps the near field out of saturation); applies to echoes, not to the
+  /// thermal noise floor or the housing returns. stc_exponent 0 = off.
+  double stc_range_m = 11;        ///< valid (0, 1000]
+  double stc_exponent = 20;       ///< valid [0, 40]
   double code_per_octave = 6.02;  ///< 8-bit code per doubling of amplitude (20*log10); valid (0, 100]
 };
 
