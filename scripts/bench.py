@@ -6,9 +6,13 @@ list of simulated sequences in config/bench/sequences.yaml, split into train and
                      [--radarslam build/apps/radarslam] [--jobs N] [--check]
 
 --reduced runs each sequence's `ci_scans` (sequences with ci_scans 0 are left out); CI runs
-`--reduced --check`. --check fails (exit 1) on a regression of what must always hold: SLAM's
-KITTI errors no worse than its own odometry's, no false loop left in the graph, no relocalised
-scan reported as tracking or global_fix more than 2 m / 2 deg off the map. Simulations are
+`--reduced --check --baseline config/bench/baseline_reduced.json`. Every run reports (as
+"VIOLATION" lines) what must always hold and does not yet: SLAM's KITTI errors no worse than its
+own odometry's, no false loop left in the graph, no relocalised scan reported as tracking or
+global_fix more than 2 m / 2 deg off the map. --check fails (exit 1) on a regression against the
+baseline (a result of an earlier run, --write-baseline): KITTI errors more than 10 % + 0.05 %
+(0.0005 deg/m) worse, more false loops or wrongly trusted scans, revisit consistency or loop
+recall more than 0.05 lower, or a sequence missing from the baseline. Simulations are
 cached in OUT/<name>/sim (re-used when the options are the same). Results: a Markdown table on
 stdout and OUT/results.json.
 """
@@ -159,6 +163,33 @@ def regressions(name, r):
     return out
 
 
+def against_baseline(name, r, base):
+    """What got worse than the baseline run (tolerances in the module docstring)."""
+    if base is None:
+        return [f"{name}: not in the baseline (run --write-baseline)"]
+    out = []
+    for part in ("odometry", "slam"):
+        for key, slack in (("kitti_t_percent", 0.05), ("kitti_r_deg_per_m", 0.0005)):
+            now, was = r[part][key], base[part][key]
+            if now is not None and was is not None and now > 1.1 * was + slack:
+                out.append(f"{name}: {part} {key} {now:.4g} (baseline {was:.4g})")
+    if r["loops"]["false_in_graph"] > base["loops"]["false_in_graph"]:
+        out.append(f"{name}: {r['loops']['false_in_graph']} false loops left (baseline {base['loops']['false_in_graph']})")
+    for key, now, was in (("loop recall", r["loops"]["recall"], base["loops"]["recall"]),
+                          ("revisit consistency", r["map_consistency"]["revisits"]["fraction"],
+                           base["map_consistency"]["revisits"]["fraction"])):
+        if now is not None and was is not None and now < was - 0.05:
+            out.append(f"{name}: {key} {now:.3f} (baseline {was:.3f})")
+    loc, bl = r.get("localization"), base.get("localization")
+    if loc and bl:
+        if loc["trusted_over_2m_or_2deg"] > bl["trusted_over_2m_or_2deg"]:
+            out.append(f"{name}: {loc['trusted_over_2m_or_2deg']} trusted scans > 2 m off (baseline {bl['trusted_over_2m_or_2deg']})")
+        if loc["tracking_within_0.3m_0.5deg"] < bl["tracking_within_0.3m_0.5deg"] - 0.05:
+            out.append(f"{name}: relocalisation within 0.3 m / 0.5 deg {loc['tracking_within_0.3m_0.5deg']:.3f} "
+                       f"(baseline {bl['tracking_within_0.3m_0.5deg']:.3f})")
+    return out
+
+
 def fmt(v, spec):
     return "-" if v is None else format(v, spec)
 
@@ -189,10 +220,21 @@ def main():
     ap.add_argument("--only", action="append", default=[], metavar="NAME", help="just these sequences")
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "bench"))
     ap.add_argument("--radarslam", default=os.path.join(ROOT, "build", "apps", "radarslam"))
-    ap.add_argument("--check", action="store_true", help="exit 1 on a regression")
+    ap.add_argument("--check", action="store_true", help="exit 1 on a regression against --baseline")
+    ap.add_argument("--baseline", help="results.json of an earlier run to compare with")
+    ap.add_argument("--write-baseline", metavar="FILE", help="also write this run's results here")
     a = ap.parse_args()
     if not os.access(a.radarslam, os.X_OK):
         fail(f"{a.radarslam}: not an executable (build first, or pass --radarslam)")
+    if a.check and not a.baseline:
+        fail("--check needs --baseline")
+    baseline = None
+    if a.baseline:
+        try:
+            with open(a.baseline, encoding="utf-8") as f:
+                baseline = json.load(f)
+        except (OSError, ValueError) as e:
+            fail(f"{a.baseline}: {e}")
     seqs = load_sequences(a.sequences)
     unknown = set(a.only) - {s["name"] for s in seqs}
     if unknown:
@@ -203,7 +245,7 @@ def main():
     if not chosen:
         fail("no sequence selected")
     os.makedirs(a.out, exist_ok=True)
-    results, problems = [], []
+    results, problems, violations = [], [], []
     for i, s in enumerate(chosen):
         scans = s["ci_scans"] if a.reduced else s["scans"]
         print(f"bench: [{i + 1}/{len(chosen)}] {s['name']} ({s['split']}, {scans} scans)", file=sys.stderr, flush=True)
@@ -212,11 +254,17 @@ def main():
         except (RuntimeError, OSError, KeyError, ValueError) as e:
             fail(str(e))
         results.append((s["name"], s["split"], r))
-        problems += regressions(s["name"], r)
+        violations += regressions(s["name"], r)
+        if baseline is not None:
+            problems += against_baseline(s["name"], r, baseline.get(s["name"]))
         print(f"bench: {s['name']} done in {r['wall_s']:.0f} s", file=sys.stderr, flush=True)
-    with open(os.path.join(a.out, "results.json"), "w", encoding="utf-8") as f:
-        json.dump({n: {"split": sp, **r} for n, sp, r in results}, f, indent=1)
+    doc = {n: {"split": sp, **r} for n, sp, r in results}
+    for path in filter(None, (os.path.join(a.out, "results.json"), a.write_baseline)):
+        with open(path, "w", encoding="utf-8") as f:
+            json.dump(doc, f, indent=1)
     print(table(results))
+    for v in violations:
+        print(f"bench: VIOLATION {v}", file=sys.stderr)
     for p in problems:
         print(f"bench: REGRESSION {p}", file=sys.stderr)
     if a.check and problems:

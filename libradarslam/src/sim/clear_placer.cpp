@@ -61,14 +61,7 @@ void ClearPlacer::pole(Vec2 c, Rng& rng) {
 }
 
 void ClearPlacer::clutter(Vec2 c, Rng& rng) {
-  Surface s;
-  s.material = Material::Pole;
-  s.reflectivity = static_cast<float>(rng.uniform(0.1, 0.9));
-  s.roughness = 0.8f;
-  s.transmission = 0.5f;
-  s.depth_m = 0.3f;
-  s.texture_period_m = 1.0f;
-  s.texture_seed = static_cast<std::uint32_t>(rng.next());
+  const Surface s = clutterSurface(rng);
   circle(c, rng.uniform(0.1, 0.4), s);
 }
 

@@ -32,63 +32,46 @@ inline Surface facadeSurface(Rng& rng) {
   return s;
 }
 
+/// A material with one random parameter, its reflectivity in [reflectivity_lo, reflectivity_hi);
+/// drawn in a fixed order (reflectivity, then the texture seed) so worlds stay reproducible.
+struct MaterialSpec {
+  Material material;
+  double reflectivity_lo, reflectivity_hi;
+  float roughness, transmission, depth_m, texture_period_m;
+};
+
+inline Surface drawSurface(const MaterialSpec& m, Rng& rng) {
+  Surface s;
+  s.material = m.material;
+  s.reflectivity = static_cast<float>(rng.uniform(m.reflectivity_lo, m.reflectivity_hi));
+  s.roughness = m.roughness;
+  s.transmission = m.transmission;
+  s.depth_m = m.depth_m;
+  s.texture_period_m = m.texture_period_m;
+  s.texture_seed = static_cast<std::uint32_t>(rng.next());
+  return s;
+}
+
+// The beam partly passes under and around a car.
 inline Surface carSurface(Rng& rng) {
-  Surface s;
-  s.material = Material::Car;
-  s.reflectivity = static_cast<float>(rng.uniform(0.8, 1.4));
-  s.roughness = 0.55f;
-  s.transmission = 0.15f;  // the beam partly passes under and around a car
-  s.depth_m = 0.8f;
-  s.texture_period_m = 0.8f;
-  s.texture_seed = static_cast<std::uint32_t>(rng.next());
-  return s;
+  return drawSurface({Material::Car, 0.8, 1.4, 0.55f, 0.15f, 0.8f, 0.8f}, rng);
 }
-
 inline Surface poleSurface(Rng& rng) {
-  Surface s;
-  s.material = Material::Pole;
-  s.reflectivity = static_cast<float>(rng.uniform(1.0, 2.0));
-  s.roughness = 0.3f;
-  s.depth_m = 0.2f;
-  s.texture_period_m = 10.0f;
-  s.texture_seed = static_cast<std::uint32_t>(rng.next());
-  return s;
+  return drawSurface({Material::Pole, 1.0, 2.0, 0.3f, 0.0f, 0.2f, 10.0f}, rng);
 }
-
 inline Surface canopySurface(Rng& rng) {
-  Surface s;
-  s.material = Material::Tree;
-  s.reflectivity = static_cast<float>(rng.uniform(0.15, 0.35));
-  s.roughness = 1.0f;
-  s.transmission = 0.55f;
-  s.depth_m = 2.0f;
-  s.texture_period_m = 0.7f;
-  s.texture_seed = static_cast<std::uint32_t>(rng.next());
-  return s;
+  return drawSurface({Material::Tree, 0.15, 0.35, 1.0f, 0.55f, 2.0f, 0.7f}, rng);
 }
-
 inline Surface hedgeSurface(Rng& rng) {
-  Surface s;
-  s.material = Material::Hedge;
-  s.reflectivity = static_cast<float>(rng.uniform(0.2, 0.4));
-  s.roughness = 1.0f;
-  s.transmission = 0.3f;
-  s.depth_m = 1.5f;
-  s.texture_period_m = 0.8f;
-  s.texture_seed = static_cast<std::uint32_t>(rng.next());
-  return s;
+  return drawSurface({Material::Hedge, 0.2, 0.4, 1.0f, 0.3f, 1.5f, 0.8f}, rng);
 }
-
+// Fence texture: the posts.
 inline Surface fenceSurface(Rng& rng) {
-  Surface s;
-  s.material = Material::Fence;
-  s.reflectivity = static_cast<float>(rng.uniform(0.25, 0.5));
-  s.roughness = 0.8f;
-  s.transmission = 0.6f;
-  s.depth_m = 0.2f;
-  s.texture_period_m = 2.5f;  // posts
-  s.texture_seed = static_cast<std::uint32_t>(rng.next());
-  return s;
+  return drawSurface({Material::Fence, 0.25, 0.5, 0.8f, 0.6f, 0.2f, 2.5f}, rng);
+}
+/// Small street clutter: bins, bollards, signs, bikes, bushes.
+inline Surface clutterSurface(Rng& rng) {
+  return drawSurface({Material::Pole, 0.1, 0.9, 0.8f, 0.5f, 0.3f, 1.0f}, rng);
 }
 
 class Builder {
@@ -105,16 +88,8 @@ class Builder {
 
   void pole(Vec2 c) { w_.circles.push_back({c, rng_.uniform(0.1, 0.2), poleSurface(rng_)}); }
 
-  /// Small street clutter: bins, bollards, signs, bikes, bushes.
   void clutter(Vec2 c) {
-    Surface s;
-    s.material = Material::Pole;
-    s.reflectivity = static_cast<float>(rng_.uniform(0.1, 0.9));
-    s.roughness = 0.8f;
-    s.transmission = 0.5f;
-    s.depth_m = 0.3f;
-    s.texture_period_m = 1.0f;
-    s.texture_seed = static_cast<std::uint32_t>(rng_.next());
+    const Surface s = clutterSurface(rng_);
     w_.circles.push_back({c, rng_.uniform(0.1, 0.4), s});
   }
 
