@@ -4,7 +4,6 @@
 // (columns in docs/localization.md). With ground truth in DIR it reports the localisation errors.
 // DDS (docs/dds.md): --publish sends every localised pose on rt/radarslam/pose; DIR = "dds:" takes
 // the scans from rt/radarslam/radar_scan instead of a dataset (localize_dds.h).
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -39,6 +38,7 @@
 #include "localize_dds.h"
 #include "localize_output.h"
 #include "localize_truth.h"
+#include "progress_line.h"
 
 namespace radarslam::cli {
 namespace {
@@ -263,23 +263,15 @@ int runLocalize(int argc, char** argv) {
   LocalizationTiming total;
   const auto t0 = Clock::now();
   const std::clock_t cpu0 = std::clock();
-  auto last_print = t0;
-  const bool progress = !quiet_arg.getValue() && isatty(STDERR_FILENO);
   auto last_scan_time = t0;
-  auto printProgress = [&](Clock::time_point now) {
-    const double el = std::chrono::duration<double>(now - t0).count();
-    const double rate = el > 0 ? done / el : 0;
-    if (scans) {
-      const double eta = rate > 0 ? (scans->total() - done - skipped) / rate : 0;
-      std::fprintf(
-          stderr, "%slocalize: %zu/%zu scans (%.0f%%), %.1f scans/s, ETA %s, localised %.1f%%, fixes %zu%s",
-          progress ? "\r" : "", done + skipped, scans->total(), 100.0 * (done + skipped) / scans->total(),
-          rate, clockText(eta).c_str(), 100.0 * localised / done, fixes, progress ? "   " : "\n");
-    } else {  // a live stream: no total, no ETA
-      std::fprintf(stderr, "%slocalize: %zu DDS scans, %.1f scans/s, localised %.1f%%, fixes %zu%s",
-                   progress ? "\r" : "", done, rate, 100.0 * localised / done, fixes,
-                   progress ? "   " : "\n");
-    }
+  // Dataset: done + skipped of the total, with ETA; a live DDS stream: no total, no ETA.
+  ProgressLine bar("localize", scans ? scans->total() : 0, !quiet_arg.getValue(),
+                   scans ? "scans" : "DDS scans", "scans");
+  const ProgressLine::Tail tail = [&] {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "localised %.1f%%, fixes %zu", done > 0 ? 100.0 * localised / done : 0.0,
+                  fixes);
+    return std::string(buf);
   };
   for (;;) {
     Fetched f = pending.get();
@@ -327,16 +319,13 @@ int runLocalize(int argc, char** argv) {
         }
       }
     }
-    const auto now = Clock::now();
-    const bool last = scans && done + skipped == scans->total();
-    if (!quiet_arg.getValue() && (std::chrono::duration<double>(now - last_print).count() > 1.0 || last)) {
-      last_print = now;
-      printProgress(now);
-    }
+    bar.update(done + skipped, tail);
   }
-  // A DDS stream has no known last scan: its final line once the stream ended.
-  if (!scans && !quiet_arg.getValue() && done > 0) printProgress(last_scan_time);
-  if (progress) std::fprintf(stderr, "\n");
+  // The final line; a DDS stream's once it ended, timed to its last scan (not the --dds-timeout).
+  if (scans)
+    bar.finish(done + skipped, tail);
+  else if (done > 0)
+    bar.finish(done, tail, last_scan_time);
   // A DDS stream ends with --dds-timeout s of silence: not part of the processing time.
   const double elapsed = std::chrono::duration<double>((scans ? Clock::now() : last_scan_time) - t0).count();
   const double cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;

@@ -9,11 +9,11 @@
 
 namespace radarslam::cli {
 
-using Clock = std::chrono::steady_clock;
-
-ProgressLine::ProgressLine(std::string what, std::size_t total, bool enabled, std::string unit)
+ProgressLine::ProgressLine(std::string what, std::size_t total, bool enabled, std::string unit,
+                           std::string rate_unit)
     : what_(std::move(what)),
       unit_(std::move(unit)),
+      rate_unit_(rate_unit.empty() ? unit_ : std::move(rate_unit)),
       total_(total),
       enabled_(enabled),
       tty_(::isatty(STDERR_FILENO) != 0),
@@ -30,27 +30,27 @@ void ProgressLine::update(std::size_t done, const Tail& tail) {
   const double interval = tty_ ? 0.5 : 10.0;
   if (std::chrono::duration<double>(now - last_).count() < interval) return;
   last_ = now;
-  print(done, tail, false);
+  print(done, tail, false, now);
 }
 
-void ProgressLine::finish(std::size_t done, const Tail& tail) {
+void ProgressLine::finish(std::size_t done, const Tail& tail, std::optional<Clock::time_point> end) {
   if (!enabled_ || finished_) return;
   finished_ = true;
-  print(done, tail, true);
+  print(done, tail, true, end ? *end : Clock::now());
 }
 
-void ProgressLine::print(std::size_t done, const Tail& tail, bool final) {
-  const double el = elapsedSeconds();
+void ProgressLine::print(std::size_t done, const Tail& tail, bool final, Clock::time_point at) {
+  const double el = std::chrono::duration<double>(at - start_).count();
   const double rate = el > 0 ? static_cast<double>(done) / el : 0.0;
   std::string line = what_ + ": " + std::to_string(done);
   char buf[128];
   if (total_ > 0) {
     const double left = done < total_ ? static_cast<double>(total_ - done) : 0.0;
     std::snprintf(buf, sizeof buf, "/%zu %s (%.0f%%), %.1f %s/s, ETA %s", total_, unit_.c_str(),
-                  100.0 * static_cast<double>(done) / static_cast<double>(total_), rate, unit_.c_str(),
+                  100.0 * static_cast<double>(done) / static_cast<double>(total_), rate, rate_unit_.c_str(),
                   clockText(rate > 0 ? left / rate : 0.0).c_str());
   } else {
-    std::snprintf(buf, sizeof buf, " %s, %.1f %s/s", unit_.c_str(), rate, unit_.c_str());
+    std::snprintf(buf, sizeof buf, " %s, %.1f %s/s", unit_.c_str(), rate, rate_unit_.c_str());
   }
   line += buf;
   if (final) {

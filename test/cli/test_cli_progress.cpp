@@ -29,6 +29,12 @@ TEST(CliProgress, WholeLinesWhenStderrIsAFile) {
   r = runCli("map " + sim + " -o '" + (tmp / "m").string() + "'", tmp);
   ASSERT_EQ(r.code, 0) << r.err;
   expectWholeLineProgress(r.err, "map", "map");
+  r = runCli("localize '" + (tmp / "m").string() + "' " + sim + " -o '" + (tmp / "l.tum").string() + "'",
+             tmp);
+  ASSERT_EQ(r.code, 0) << r.err;
+  expectWholeLineProgress(r.err, "localize", "localize");
+  EXPECT_NE(r.err.find(", localised "), std::string::npos) << r.err;  // its own figures after the rate
+  EXPECT_NE(r.err.find(", fixes "), std::string::npos) << r.err;
   r = runCli("convert " + sim + " '" + (tmp / "s.rawlog").string() + "'", tmp);
   ASSERT_EQ(r.code, 0) << r.err;
   expectWholeLineProgress(r.err, "convert", "convert");
