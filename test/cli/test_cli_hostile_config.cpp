@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli_run.h"
@@ -67,17 +68,28 @@ std::string deepBlock(std::size_t n) {
   return s + std::string(n, ' ') + "b: 1\n";
 }
 
-TEST(HostileConfigNesting, DeepNestingIsOneLineErrorNotACrash) {
+struct DeepText {
+  std::string name, text;
+};
+
+class HostileConfigNesting : public ::testing::TestWithParam<DeepText> {};
+
+TEST_P(HostileConfigNesting, DeepNestingIsOneLineErrorNotACrash) {
   RADARSLAM_REQUIRE_REAL_DATA(data, "oxford_radar_robotcar_tiny");
   TempDir tmp;
-  for (const std::string& text : {deepFlow(20000), deepMaps(20000), deepDashes(20000), deepBlock(3000)}) {
-    const CliResult r = runOdometryConfig(data, tmp, text, "deep.yaml");
-    expectOneLineError(r, {"deep.yaml", "nested more than 64"});
-    EXPECT_FALSE(fs::exists(tmp / "out.tum"));
-  }
+  const CliResult r = runOdometryConfig(data, tmp, GetParam().text, "deep.yaml");
+  expectOneLineError(r, {"deep.yaml", "nested more than 64"});
+  EXPECT_FALSE(fs::exists(tmp / "out.tum"));
 }
 
-TEST(HostileConfigNesting, DeepManifestIsOneLineError) {
+INSTANTIATE_TEST_SUITE_P(HostileConfig, HostileConfigNesting,
+                         ::testing::Values(DeepText{"Flow", deepFlow(20000)},
+                                           DeepText{"Maps", deepMaps(20000)},
+                                           DeepText{"Dashes", deepDashes(20000)},
+                                           DeepText{"Block", deepBlock(3000)}),
+                         [](const auto& param_info) { return param_info.param.name; });
+
+TEST(HostileConfigManifest, DeepManifestIsOneLineError) {
   TempDir tmp;
   const fs::path map = tmp / "map";
   fs::create_directories(map);
@@ -125,6 +137,7 @@ TEST(HostileConfigText, EmptyOrCommentOnlyConfigKeepsTheDefaults) {
   RADARSLAM_REQUIRE_REAL_DATA(data, "oxford_radar_robotcar_tiny");
   TempDir tmp;
   for (const std::string& text : {std::string(), std::string("# nothing\n\n")}) {
+    SCOPED_TRACE("config '" + text + "'");
     const CliResult r = runOdometryConfig(data, tmp, text);
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(fs::exists(tmp / "out.tum"));
@@ -245,23 +258,30 @@ INSTANTIATE_TEST_SUITE_P(
                       BadOption{"EvalStep", "eval nowhere nowhere --step 4000000000", "--step"}),
     [](const auto& param_info) { return param_info.param.name; });
 
-TEST(HostileConfigPhysical, AbsurdTrajectoryCoordinatesAreOneLineErrors) {
+struct AbsurdX {
+  std::string name, x;
+};
+
+class HostileConfigTrajectory : public ::testing::TestWithParam<AbsurdX> {};
+
+TEST_P(HostileConfigTrajectory, AbsurdTrajectoryCoordinateIsOneLineErrorAsEstimateAndAsTruth) {
   TempDir tmp;
-  const std::string good = "1.0 0 0 0 0 0 0 1\n2.0 1 0 0 0 0 0 1\n3.0 2 0 0 0 0 0 1\n";
-  writeFile(tmp / "gt.tum", good);
-  for (const std::string x : {"1e308", "-2e7", "inf"}) {
-    writeFile(tmp / "est.tum", "1.0 0 0 0 0 0 0 1\n2.0 " + x + " 0 0 0 0 0 1\n3.0 2 0 0 0 0 0 1\n");
-    CliResult r = runCli("eval " + quoted(tmp / "est.tum") + " " + quoted(tmp / "gt.tum") + " --plot-dir " +
-                             quoted(tmp / "plots"),
-                         tmp);
-    expectOneLineError(r, {"est.tum"});
-    r = runCli("eval " + quoted(tmp / "gt.tum") + " " + quoted(tmp / "est.tum") + " --plot-dir " +
-                   quoted(tmp / "plots"),
-               tmp);
+  writeFile(tmp / "gt.tum", "1.0 0 0 0 0 0 0 1\n2.0 1 0 0 0 0 0 1\n3.0 2 0 0 0 0 0 1\n");
+  writeFile(tmp / "est.tum", "1.0 0 0 0 0 0 0 1\n2.0 " + GetParam().x + " 0 0 0 0 0 1\n3.0 2 0 0 0 0 0 1\n");
+  for (const auto& [first, second] : {std::pair{"est.tum", "gt.tum"}, std::pair{"gt.tum", "est.tum"}}) {
+    SCOPED_TRACE(std::string("eval ") + first + " " + second);
+    const CliResult r = runCli(
+        "eval " + quoted(tmp / first) + " " + quoted(tmp / second) + " --plot-dir " + quoted(tmp / "plots"),
+        tmp);
     expectOneLineError(r, {"est.tum"});
     EXPECT_FALSE(fs::exists(tmp / "plots"));
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(HostileConfig, HostileConfigTrajectory,
+                         ::testing::Values(AbsurdX{"Huge", "1e308"}, AbsurdX{"FarNegative", "-2e7"},
+                                           AbsurdX{"Inf", "inf"}),
+                         [](const auto& param_info) { return param_info.param.name; });
 
 TEST(HostileConfigPhysical, OctomapOfTooManyVoxelsIsRefusedWithItsSize) {
   RADARSLAM_REQUIRE_REAL_DATA(data, "oxford_radar_robotcar_tiny");
@@ -276,10 +296,6 @@ TEST(HostileConfigPhysical, OctomapOfTooManyVoxelsIsRefusedWithItsSize) {
       r, {"cells is too large", "--resolution"});  // the grid_columns fill is bounded by its raster
   EXPECT_FALSE(fs::exists(tmp / "out" / "map.bt"));
 }
-
-}  // namespace
-
-namespace {
 
 TEST(HostileConfigShipped, ShippedSimulatorConfigIsInRange) {
   // config/<sensor>.yaml are covered by SlamParams.EveryShippedConfigLoadsWithNoUnknownKey.

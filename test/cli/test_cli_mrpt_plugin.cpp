@@ -13,19 +13,12 @@
 #include "cli_run.h"
 #include "radarslam/core/time.h"
 #include "radarslam/io/dataset.h"
+#include "sanitized_build.h"
 #include "shared_data.h"
 #include "temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace radarslam;
-
-#if defined(__SANITIZE_ADDRESS__)
-#define RADARSLAM_SANITIZED_BUILD 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define RADARSLAM_SANITIZED_BUILD 1
-#endif
-#endif
 
 namespace {
 
