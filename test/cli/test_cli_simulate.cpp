@@ -111,7 +111,7 @@ INSTANTIATE_TEST_SUITE_P(
                     "OUT --route-from-gt CSV --length-m 100",
                     "x\n",
                     {"--length-m", "oxford-route"}}),
-    [](const auto& info) { return info.param.name; });
+    [](const auto& param_info) { return param_info.param.name; });
 
 TEST(SimulateWorld, NetworkWritesExactlyTheScansAskedFor) {
   TempDir tmp;
