@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "radarslam/frontend/odometry.h"
 #include "synthetic_radar.h"
@@ -91,6 +92,34 @@ TEST(OdometrySynthetic, RecoversAfterABlankScan) {
   // The predicted step is close (constant velocity is the truth here), the rest accurate.
   EXPECT_NEAR(r.steps[3].motion.x, r.steps[2].motion.x, 0.05);
   EXPECT_NEAR(r.steps[5].motion.x, r.steps[2].motion.x, 0.02);
+}
+
+TEST(OdometrySynthetic, VehicleFixedStructureDoesNotStopTheEstimate) {
+  // From scan 12 on, bright returns fixed to the sensor (a sidelobe fan, the azimuth-sampling
+  // pattern along a wall) outnumber the world's. They match each other at zero motion, 3.75 m
+  // from the constant-velocity prediction: inside the fixed 4 m radius, so the paper's rule
+  // reports the vehicle stopped; the radius from the prediction's running error excludes them.
+  test::ConstantTwistMotion straight;
+  straight.vx = 15.0;
+  straight.wz = 0.0;
+  auto vehicleFixed = [](int k, CObservationRadarScan& s) {
+    if (k < 12) return;
+    std::mt19937 rng(99);  // the same pattern in every scan
+    std::uniform_int_distribution<std::uint32_t> az(0, s.num_azimuths - 1), bin(60, 700);
+    for (int n = 0; n < 600; ++n) {
+      const std::uint32_t a0 = az(rng), b0 = bin(rng);
+      for (std::uint32_t a = a0; a < a0 + 2 && a < s.num_azimuths; ++a)
+        for (std::uint32_t b = b0; b < b0 + 3; ++b) s.row(a)[b] = 255;
+    }
+  };
+  OdometryParams fixed;
+  fixed.matching.adaptive_radius = false;
+  const RunResult paper = run(fixed, straight, 16, vehicleFixed);
+  const RunResult adaptive = run(OdometryParams{}, straight, 16, vehicleFixed);
+  for (int k = 13; k < 16; ++k) {
+    EXPECT_LT(paper.steps[k].motion.x, 1.0) << "scan " << k << ": the test no longer shows the failure";
+    EXPECT_NEAR(adaptive.steps[k].motion.x, 3.75, 0.1) << "scan " << k;
+  }
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <cmath>
 #include <random>
 
 #include "radarslam/frontend/keyframe_policy.h"
@@ -60,6 +61,32 @@ TEST(RadiusMatcher, IgnoresIdenticalDescriptorsOutsideTheRadius) {
   for (const auto& c : m) EXPECT_NE(c.ref_index, 50);
   // A prior further off than the radius finds nothing.
   EXPECT_TRUE(matchWithinRadius(s.cur, s.ref, {30.0, 0.0, 0.0}, 2.0, p).empty());
+}
+
+TEST(RadiusMatcher, RangeDependentRadiusFollowsAHeadingError) {
+  // The truth is the prior turned by 2 degrees: a point at range rho is rho * 0.035 m off its
+  // prediction. A radius that grows with range finds the far points a fixed 1 m radius misses.
+  const mrpt::math::TPose2D prior(1.0, 0.0, 0.0), truth(1.0, 0.0, 2.0 * M_PI / 180.0);
+  const Scene s = makeScene(truth, 300, 3);
+  MatchParams p;
+  int far_fixed = 0, far_adaptive = 0;
+  for (const auto& c : matchWithinRadius(s.cur, s.ref, prior, 1.0, p))
+    far_fixed += s.cur.xy[c.cur_index].norm() > 40;
+  const SearchRadius grows{1.0, 3.0 * 2.0 * M_PI / 180.0, 12.5};
+  const Correspondences m = matchWithinRadius(s.cur, s.ref, prior, grows, p);
+  for (const auto& c : m) {
+    EXPECT_EQ(c.cur_index, c.ref_index);
+    far_adaptive += s.cur.xy[c.cur_index].norm() > 40;
+  }
+  EXPECT_EQ(far_fixed, 0);
+  EXPECT_GE(far_adaptive, 30);
+}
+
+TEST(SearchRadius, GrowsWithRangeUpToTheCap) {
+  const SearchRadius r{1.0, 0.05, 4.0};
+  EXPECT_DOUBLE_EQ(r.at(0.0), 1.0);
+  EXPECT_NEAR(r.at(20.0), std::sqrt(2.0), 1e-12);
+  EXPECT_DOUBLE_EQ(r.at(200.0), 4.0);
 }
 
 TEST(KeyframePolicy, TranslationRotationAndMatchCount) {

@@ -10,6 +10,7 @@
 #include "radarslam/core/log.h"
 #include "radarslam/frontend/consistency_graph.h"
 #include "radarslam/frontend/max_clique.h"
+#include "radarslam/frontend/motion_prior_bound.h"
 #include "radarslam/frontend/svd_pose.h"
 
 namespace radarslam {
@@ -68,12 +69,17 @@ struct Frame {
 }  // namespace
 
 struct RadarOdometry::Impl {
-  explicit Impl(const OdometryParams& p) : params(p), converter(p.cartesian), extractor(p.keypoints) {}
+  explicit Impl(const OdometryParams& p)
+      : params(p),
+        converter(p.cartesian),
+        extractor(p.keypoints),
+        bound(p.matching, p.matching.keypoint_sigma_px * p.cartesian.m_per_px, p.matching.init_radius_m) {}
 
   OdometryParams params;
   PolarToCartesian converter;
   KeypointExtractor extractor;
-  cv::Mat mask;  ///< excludes the near-range disk
+  MotionPriorBound bound;  ///< search radius from the prediction's running error
+  cv::Mat mask;            ///< excludes the near-range disk
   Trajectory trajectory;
 
   bool have_keyframe = false;
@@ -83,6 +89,7 @@ struct RadarOdometry::Impl {
   BodyVelocity velocity;
   bool velocity_known = false;
   int lost_count = 0;
+  int last_matches = 0;  ///< radius matches of the previous scan
 
   Frame makeFrame(const CObservationRadarScan& scan, StageTimes& times) {
     auto t0 = Clock::now();
@@ -188,14 +195,20 @@ struct RadarOdometry::Impl {
         velocity_known && !gap ? twistToPose(velocity, dt) : mrpt::math::TPose2D();
     const mrpt::math::TPose2D kf_to_last = last_pose - keyframe.pose;  // T_k_prev
     const mrpt::math::TPose2D prior = kf_to_last + predicted_delta;
-    const bool wide = !velocity_known || lost_count > 0 || gap;
-    const double radius = wide ? params.matching.init_radius_m : params.matching.radius_m;
+    // Without a velocity (start, data gap) the paper's wide initial radius; otherwise the bound
+    // from the prediction's running error, widened with the frames lost since the last estimate
+    // (adaptive_radius off: the fixed radius, and the wide one after a loss).
+    const bool adaptive = params.matching.adaptive_radius;
+    const bool wide = !velocity_known || gap || (!adaptive && lost_count > 0);
+    const SearchRadius radius =
+        wide ? SearchRadius{params.matching.init_radius_m, 0.0, params.matching.init_radius_m}
+             : bound.radius(lost_count);
 
     BodyVelocity v = velocity_known ? velocity : BodyVelocity{};
     BodyVelocity cur_compensation = v;
     f.compensate(v, mc);
     auto t0 = Clock::now();
-    const Correspondences matches =
+    Correspondences matches =
         matchWithinRadius(f.features, keyframe.features, prior, radius, params.matching);
     step.times.match = msSince(t0);
     step.matches = static_cast<int>(matches.size());
@@ -203,6 +216,37 @@ struct RadarOdometry::Impl {
     mrpt::math::TPose2D svd_pose;
     Correspondences inliers = selectInliers(matches, step, svd_pose);
     step.inliers = static_cast<int>(inliers.size());
+    if (adaptive && !wide &&
+        (step.inliers < params.tracking.min_inliers || 2 * step.matches < last_matches)) {
+      // The motion left the model's bound (a turn entered harder than anything seen so far: too
+      // few inliers, or the matches collapsed against the previous scan's): one more try with the
+      // paper's wide radius; the larger inlier set wins.
+      t0 = Clock::now();
+      Correspondences wide_matches = matchWithinRadius(f.features, keyframe.features, prior,
+                                                       params.matching.init_radius_m, params.matching);
+      step.times.match += msSince(t0);
+      OdometryStep retry;
+      mrpt::math::TPose2D wide_pose;
+      Correspondences wide_inliers = selectInliers(wide_matches, retry, wide_pose);
+      step.times.clique += retry.times.clique;
+      step.times.svd += retry.times.svd;
+      // A road vehicle cannot change its velocity by more than a_max dt in one scan: a wide match
+      // whose translation leaves that bound (vehicle-fixed structure matched at zero motion,
+      // e.g. along a featureless wall) is not the motion.
+      const mrpt::math::TPose2D deviation = wide_pose - prior;
+      const double reach =
+          params.tracking.max_acceleration_mps2 * dt * dt * (1 + lost_count) + radius.fixed_m;
+      if (wide_inliers.size() > inliers.size() && std::hypot(deviation.x, deviation.y) <= reach) {
+        matches = std::move(wide_matches);
+        inliers = std::move(wide_inliers);
+        svd_pose = wide_pose;
+        step.clique_exact = retry.clique_exact;
+        step.matches = static_cast<int>(matches.size());
+        step.inliers = static_cast<int>(inliers.size());
+        step.widened = true;
+      }
+    }
+    last_matches = step.matches;
 
     bool ok = step.inliers >= params.tracking.min_inliers;
     mrpt::math::TPose2D T = svd_pose;  // T_k_t
@@ -285,6 +329,8 @@ struct RadarOdometry::Impl {
     step.times.refine = msSince(t0);
 
     if (ok) {
+      if (velocity_known && !gap && lost_count == 0)
+        bound.addDeviation(predicted_delta, (keyframe.pose + T) - last_pose);
       step.status = lost_count > 0 ? TrackingStatus::Recovered : TrackingStatus::Tracking;
       lost_count = 0;
       step.pose = keyframe.pose + T;  // eq. (2): C_t = C_k T_tk^-1, with T = T_tk^-1

@@ -26,6 +26,10 @@ void loadParams(const YamlParams& yaml, OdometryParams& p) {
   m.get("ratio", p.matching.ratio, Range::above(0, 1));
   m.get("max_descriptor_distance", p.matching.max_descriptor_distance, Range::closed(0, 1024));
   m.get("mutual", p.matching.mutual);
+  m.get("adaptive_radius", p.matching.adaptive_radius);
+  m.get("radius_sigmas", p.matching.radius_sigmas, Range::above(0, 100));
+  m.get("keypoint_sigma_px", p.matching.keypoint_sigma_px, Range::closed(0, 100));
+  m.get("adaptive_min_samples", p.matching.adaptive_min_samples, Range::closed(1, 1e6));
 
   const YamlParams o = odo.section("outliers");
   o.get("max_clique", p.outliers.max_clique);
@@ -63,6 +67,7 @@ void loadParams(const YamlParams& yaml, OdometryParams& p) {
   t.get("min_inliers", p.tracking.min_inliers, Range::closed(3, 100000));
   t.get("min_range_m", p.tracking.min_range_m, Range::closed(0, 1000));
   t.get("max_speed_mps", p.tracking.max_speed_mps, Range::above(0, 1000));
+  t.get("max_acceleration_mps2", p.tracking.max_acceleration_mps2, Range::above(0, 1000));
   t.get("keep_keyframe_when_lost", p.tracking.keep_keyframe_when_lost, Range::closed(0, 1000));
   t.get("motion_compensation", p.tracking.motion_compensation);
   t.get("acceleration_aware", p.tracking.acceleration_aware);

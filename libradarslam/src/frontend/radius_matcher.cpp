@@ -2,6 +2,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -62,25 +63,40 @@ struct Best {
 
 }  // namespace
 
+double SearchRadius::at(double range_m) const {
+  return std::min(max_m, std::hypot(fixed_m, per_range * range_m));
+}
+
 Correspondences matchWithinRadius(const FeatureSet& cur, const FeatureSet& ref,
                                   const mrpt::math::TPose2D& prior, double radius_m,
+                                  const MatchParams& params) {
+  return matchWithinRadius(cur, ref, prior, SearchRadius{radius_m, 0.0, radius_m}, params);
+}
+
+Correspondences matchWithinRadius(const FeatureSet& cur, const FeatureSet& ref,
+                                  const mrpt::math::TPose2D& prior, const SearchRadius& radius,
                                   const MatchParams& params) {
   Correspondences out;
   if (cur.xy.empty() || ref.xy.empty()) return out;
   const bool binary = cur.norm_type == cv::NORM_HAMMING || cur.norm_type == cv::NORM_HAMMING2;
-  const double r2 = radius_m * radius_m;
   const double c = std::cos(prior.phi), s = std::sin(prior.phi);
   std::vector<Eigen::Vector2d> predicted(cur.xy.size());
+  std::vector<double> r2(cur.xy.size());
+  double cell = 0.0;
   for (std::size_t i = 0; i < cur.xy.size(); ++i) {
     const auto& p = cur.xy[i];
     predicted[i] = {c * p.x() - s * p.y() + prior.x, s * p.x() + c * p.y() + prior.y};
+    const double r = radius.at(p.norm());
+    r2[i] = r * r;
+    cell = std::max(cell, r);
   }
-  const Grid grid(ref.xy, radius_m);
+  if (!(cell > 0)) return out;
+  const Grid grid(ref.xy, cell);
   std::vector<Best> fwd(cur.xy.size());
   std::vector<Best> bwd(ref.xy.size());
   for (std::size_t i = 0; i < cur.xy.size(); ++i) {
     grid.forEachNear(predicted[i], [&](int j) {
-      if ((ref.xy[j] - predicted[i]).squaredNorm() > r2) return;
+      if ((ref.xy[j] - predicted[i]).squaredNorm() > r2[i]) return;
       const double d =
           descriptorDistance(cur.descriptors, static_cast<int>(i), ref.descriptors, j, cur.norm_type);
       auto upd = [d](Best& b, int idx) {

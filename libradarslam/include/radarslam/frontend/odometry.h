@@ -7,8 +7,9 @@
 // A scan that cannot be tracked never aborts the run: its pose is predicted with constant
 // velocity and it becomes the new keyframe (re-initialisation) - unless it has too few keypoints
 // to track against (a blank scan), in which case the old keyframe is kept for up to
-// tracking.keep_keyframe_when_lost scans. After a loss the next scan is matched with the wide
-// initial search radius.
+// tracking.keep_keyframe_when_lost scans. The search radius comes from the prediction's running
+// error (frontend/motion_prior_bound.h) and widens with the scans lost since the last estimate;
+// the wide initial radius is used only without a velocity (start, data gap).
 #include <Eigen/Core>
 
 #include <memory>
@@ -39,6 +40,7 @@ struct OdometryStep {
   TrackingStatus status = TrackingStatus::Initialised;
   int keypoints = 0, matches = 0, inliers = 0;
   bool clique_exact = true;
+  bool widened = false;  ///< the adaptive radius found too few inliers; matched again with the wide one
   bool new_keyframe = false;
   /// When new_keyframe: the new keyframe's keypoints in its sensor frame at the reference time
   /// (motion compensated) - the observations local mapping turns into map points - and, when it
