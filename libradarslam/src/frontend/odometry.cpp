@@ -159,8 +159,24 @@ struct RadarOdometry::Impl {
     return inliers;
   }
 
-  OdometryStep process(const CObservationRadarScan& scan) {
+  /// The scan the features are taken from: with Doppler compensation on and a tracked velocity,
+  /// a copy whose azimuth rows are moved back by their Doppler range offset (per azimuth, since
+  /// an alternating-chirp sensor shifts neighbouring azimuths in opposite directions: that cannot
+  /// be undone per keypoint once the Cartesian image has blended them). The velocity is the last
+  /// pair's twist, the best estimate before this scan is matched.
+  const CObservationRadarScan& dopplerCompensated(const CObservationRadarScan& scan) {
+    const auto& d = params.doppler;
+    if (!d.enabled || d.beta_s == 0.0 || !velocity_known || !have_keyframe) return scan;
+    if (toSeconds(scan.refStampNs() - last_stamp) > params.tracking.max_prediction_gap_s) return scan;
+    doppler_scan = scan;
+    compensateDoppler(doppler_scan, velocity, d.beta_s);
+    return doppler_scan;
+  }
+  CObservationRadarScan doppler_scan;  ///< scratch copy for dopplerCompensated()
+
+  OdometryStep process(const CObservationRadarScan& scan_in) {
     OdometryStep step;
+    const CObservationRadarScan& scan = dopplerCompensated(scan_in);
     Frame f = makeFrame(scan, step.times);
     step.stamp = f.stamp;
     step.keypoints = static_cast<int>(f.raw.size());
