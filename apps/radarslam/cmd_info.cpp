@@ -109,6 +109,7 @@ int runInfo(int argc, char** argv) {
   } else {
     std::cout << "ground truth:  no" << missingGroundTruth(reader->kind()) << "\n";
   }
+  for (const std::string& part : reader->missingParts()) std::cout << "missing:       " << part << "\n";
 
   if (check_arg.getValue()) {
     ScanIterator it(*reader, skip_arg.getValue());
