@@ -67,3 +67,30 @@ TEST(CliInfoLayouts, RadiateWithoutSideFilesSaysWhatIsMissing) {
   ASSERT_EQ(full.code, 0) << full.err;
   EXPECT_EQ(full.out.find("missing:       "), std::string::npos) << full.out;
 }
+
+// A radar-only Boreas-RT folder (RAS6 scan, byte 10 = chirp flag, no applanix/ or calib/): read,
+// the alternating chirp reported, the missing ground truth named.
+TEST(CliInfoLayouts, BoreasRas6RadarOnlyReportsTheChirp) {
+  radarslam::test::TempDir tmp;
+  radarslam::CObservationRadarScan scan;
+  scan.resize(400, 6848);
+  scan.range_resolution_m = 0.04381;
+  scan.range_offset_m = -0.31;
+  for (std::uint32_t a = 0; a < 400; ++a) {
+    scan.azimuth_stamps_ns[a] = (1733248400000000LL + a * 625LL) * 1000;
+    scan.azimuth_chirp[a] = a % 2 ? -1 : 1;
+    scan.row(a)[100 + a] = 200;
+  }
+  const auto png = radarslam::encodeOxfordPng(scan);
+  const fs::path dir = tmp / "boreas-rt" / "radar";
+  fs::create_directories(dir);
+  std::ofstream(dir / (std::to_string(scan.azimuth_stamps_ns[199] / 1000) + ".png"), std::ios::binary)
+      .write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+  const auto r = radarslam::test::runCli("info '" + (tmp / "boreas-rt").string() + "'", tmp);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("dataset:       Boreas"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("sensor:        Navtech RAS6"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("geometry:      400 azimuths x 6848 bins, 0.04381 m/bin"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("chirp:         200 up / 200 down-chirp azimuths"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ground truth:  no (applanix/radar_poses.csv missing"), std::string::npos) << r.out;
+}
