@@ -25,6 +25,7 @@ SECTIONS = [
     ("frontend/odometry_params.cpp", None, "r", "RefineParams", ["odometry.refine"]),
     ("frontend/odometry_params.cpp", None, "k", "KeyframeParams", ["odometry.keyframes"]),
     ("frontend/odometry_params.cpp", None, "t", "TrackingParams", ["odometry.tracking"]),
+    ("radar/doppler_compensation.cpp", None, "yaml", "DopplerParams", ["odometry.doppler"]),
     ("slam/slam_params.cpp", None, "slam", "SlamParams", ["slam"]),
     ("slam/slam_params.cpp", None, "lm", "LocalMappingParams", ["slam.local_mapping"]),
     ("slam/slam_params.cpp", None, "oe", "OdometryEdgeParams", ["slam.odometry_edges"]),

@@ -1,5 +1,6 @@
 // `radarslam info PATH`: what a dataset directory (or .rawlog) holds: kind, sensor, scan count,
 // duration, geometry (from the first readable scan), ground truth and its length.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -97,6 +98,11 @@ int runInfo(int argc, char** argv) {
             << fmt("%.1f", toSeconds(scan->azimuth_stamps_ns.back() - scan->azimuth_stamps_ns.front()) * 1e3)
             << " ms first to last azimuth (scan " << first_ok << ": "
             << reader->scanPath(first_ok).filename().string() << ")\n";
+  if (scan->hasChirpDirections()) {
+    const auto up = std::count(scan->azimuth_chirp.begin(), scan->azimuth_chirp.end(), std::int8_t{1});
+    std::cout << "chirp:         " << up << " up / " << scan->num_azimuths - up
+              << " down-chirp azimuths (per-azimuth chirp flag: Doppler range offsets of opposite signs)\n";
+  }
   if (first_ok > 0)
     std::cout << "warning:       " << first_ok
               << " scan(s) before it could not be read; first: " << *first_error << "\n";
@@ -109,6 +115,7 @@ int runInfo(int argc, char** argv) {
   } else {
     std::cout << "ground truth:  no" << missingGroundTruth(reader->kind()) << "\n";
   }
+  for (const std::string& part : reader->missingParts()) std::cout << "missing:       " << part << "\n";
 
   if (check_arg.getValue()) {
     ScanIterator it(*reader, skip_arg.getValue());

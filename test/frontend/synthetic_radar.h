@@ -55,6 +55,11 @@ struct SynthScanParams {
   double beam_sigma_rad = 0.9 * std::numbers::pi / 180 * 0.6;
   double range_sigma_m = 0.15;
   double noise = 12.0;  ///< speckle amplitude
+  /// FMCW Doppler range offset (radar/doppler_compensation.h): a reflector appears s * beta * u
+  /// nearer, u = the sensor's body velocity along the beam; s = +1, or -1 on odd azimuths when
+  /// the chirp alternates (RAS6; the scan then carries azimuth_chirp). 0 = none.
+  double doppler_beta_s = 0.0;
+  bool alternating_chirp = false;
   StampNs t0_ns = 1'600'000'000'000'000'000LL;
 };
 
@@ -74,6 +79,9 @@ CObservationRadarScan::Ptr renderScan(const std::vector<Reflector>& world, const
     const double t = k * p.period_s + i * p.period_s / p.azimuths;
     scan->azimuth_stamps_ns[i] = p.t0_ns + static_cast<StampNs>(std::llround(t * 1e9));
     const double az = scan->azimuth_angles_rad[i];
+    const int chirp = p.alternating_chirp && i % 2 ? -1 : 1;
+    if (p.alternating_chirp) scan->azimuth_chirp[i] = static_cast<std::int8_t>(chirp);
+    const double doppler = chirp * p.doppler_beta_s * (motion.vx * std::cos(az) + motion.vy * std::sin(az));
     double sx, sy, sth;
     motion.poseAt(t, sx, sy, sth);
     const double c = std::cos(sth), s = std::sin(sth);
@@ -86,7 +94,7 @@ CObservationRadarScan::Ptr renderScan(const std::vector<Reflector>& world, const
       const double da = std::remainder(std::atan2(ly, lx) - az, 2 * std::numbers::pi);
       if (std::abs(da) > 3 * p.beam_sigma_rad) continue;
       const double ga = std::exp(-0.5 * da * da / (p.beam_sigma_rad * p.beam_sigma_rad));
-      const double centre = (range - scan->range_offset_m) / p.resolution_m;
+      const double centre = (range - doppler - scan->range_offset_m) / p.resolution_m;
       const int spread = static_cast<int>(std::ceil(3 * p.range_sigma_m / p.resolution_m));
       for (int b = static_cast<int>(centre) - spread; b <= static_cast<int>(centre) + spread + 1; ++b) {
         if (b < 0 || b >= static_cast<int>(p.bins)) continue;

@@ -34,6 +34,23 @@ TEST(OdometryParams, TyposAndBadValuesAreErrors) {
   EXPECT_THROW(loadParams(YamlParams::fromText("odometry: {matching: {radius_m: -1}}\n"), p), InputError);
 }
 
+TEST(OdometryParams, DopplerSectionIsReadAndRangeChecked) {
+  OdometryParams p;
+  EXPECT_FALSE(p.doppler.enabled);  // off unless a sensor config enables it
+  const YamlParams y = YamlParams::fromText("odometry: {doppler: {enabled: true, beta_s: -0.03}}\n");
+  loadParams(y, p);
+  y.rejectUnknownKeys();
+  EXPECT_TRUE(p.doppler.enabled);
+  EXPECT_DOUBLE_EQ(p.doppler.beta_s, -0.03);
+  EXPECT_THROW(loadParams(YamlParams::fromText("odometry: {doppler: {beta_s: 2}}\n"), p), InputError);
+  // The sensors whose beta is not published ship with the compensation off.
+  for (const char* name : {"mulran", "boreas"}) {
+    OdometryParams q;
+    loadParams(YamlParams::fromFile(std::string(RADARSLAM_SOURCE_DIR) + "/config/" + name + ".yaml"), q);
+    EXPECT_FALSE(q.doppler.enabled) << name;
+  }
+}
+
 TEST(OdometryParams, EveryShippedConfigLoads) {
   int n = 0;
   for (const char* name : {"oxford", "mulran", "boreas", "radiate", "sim_radar"}) {

@@ -57,6 +57,11 @@ TEST_P(BoreasGeometry, SyntheticScansDecodeWithTheRightGeometry) {
     EXPECT_EQ(scan->azimuth_stamps_ns[0], (g.t0_us + static_cast<std::int64_t>(s) * 250'000) * 1000);
     // Column 10 alternates 0/255 in the synthetic data: Boreas ignores it, all azimuths valid.
     EXPECT_EQ(std::count(scan->azimuth_valid.begin(), scan->azimuth_valid.end(), 1), kAz);
+    // RAS6: column 10 is the chirp flag (255 up, 0 down); the CIR204-H has a single chirp.
+    const bool ras6 = g.bins == 6848;
+    EXPECT_EQ(scan->hasChirpDirections(), ras6);
+    for (int r = 0; r < kAz; ++r)
+      EXPECT_EQ(scan->chirp(static_cast<std::size_t>(r)), ras6 ? (r % 2 ? 1 : -1) : 0) << "azimuth " << r;
     EXPECT_EQ(scan->row(3)[g.bins - 1], test::syntheticPower(3, g.bins - 1));
   }
   // Ground truth: one absolute pose per scan stamp (us), z-down radar (roll pi) heading north-east
@@ -105,6 +110,20 @@ INSTANTIATE_TEST_SUITE_P(
                                0.04381, "Navtech CIR204-H"},
                       Geometry{"RAS6", 1733248400LL * 1'000'000, 6848, 0.04381, "Navtech RAS6"}),
     [](const auto& param_info) { return std::string(param_info.param.name); });
+
+// A RAS6 scan whose flag column never changes has no alternating chirp: directions stay unknown.
+TEST(BoreasChirp, ConstantFlagColumnIsNotAnAlternatingChirp) {
+  for (const std::uint8_t flag : {std::uint8_t{0}, std::uint8_t{255}}) {
+    test::TempDir tmp;
+    auto sweep = test::makeSweep(20, 1733248400LL * 1'000'000, 625, 7);
+    std::fill(sweep.valid.begin(), sweep.valid.end(), flag);
+    test::writeOxfordStylePng(tmp / "radar" / (std::to_string(sweep.stamps[9]) + ".png"), sweep.stamps,
+                              sweep.encoders, sweep.valid, 6848);
+    const auto scan = openDataset(tmp.path())->readScan(0);
+    EXPECT_FALSE(scan->hasChirpDirections()) << "flag " << int{flag};
+    EXPECT_EQ(scan->checkConsistency(), "");
+  }
+}
 
 // radar/ alone whose scans are not of a Boreas geometry is not guessed to be Boreas.
 TEST(BoreasDetection, RadarFolderOfOtherScansIsStillAnError) {

@@ -161,3 +161,28 @@ TEST(MulRanGroundTruth, BasePosesBecomeRadarPosesRelativeToTheFirst) {
   test::writeText(tmp / "bad.csv", "1564718975911638410,1,0,0\n");
   test::expectInputError([&] { readMulRanGroundTruth(tmp / "bad.csv"); }, "bad.csv:1", "expected 13");
 }
+
+// The real scan in the plain polar layout, in a folder with nothing else (no global_pose.csv,
+// no data_stamp.csv): it reads as the CSV does, without ground truth or missing-part notes.
+TEST(MulRanReader, PlainPolarFolderWithoutSideFilesReadsTheRealScan) {
+  RADARSLAM_REQUIRE_REAL_DATA(dir, "mulran_single_ray_scan");
+  const auto csv = readScanFile(dir / "1564718976161407002.csv");
+  test::TempDir tmp;
+  cv::Mat rows(static_cast<int>(csv->num_azimuths), static_cast<int>(csv->num_bins), CV_8UC1,
+               const_cast<std::uint8_t*>(csv->power.data()));
+  const auto png = tmp / "sensor_data" / "radar" / "polar" / "1564718976161407002.png";
+  std::filesystem::create_directories(png.parent_path());
+  ASSERT_TRUE(cv::imwrite(png.string(), cv::Mat(rows.t())));  // rows = bins, columns = azimuths
+  const auto reader = openDataset(tmp.path());
+  EXPECT_EQ(reader->kind(), DatasetKind::MulRanPolar);
+  ASSERT_EQ(reader->size(), 1u);
+  EXPECT_FALSE(reader->hasGroundTruth());
+  EXPECT_TRUE(reader->missingParts().empty());
+  const auto scan = reader->readScan(0);
+  EXPECT_EQ(scan->checkConsistency(), "");
+  EXPECT_EQ(scan->power, csv->power);
+  EXPECT_EQ(scan->azimuth_stamps_ns.back(), csv->azimuth_stamps_ns.back());  // end-stamped
+  // One scan: the sweep is the nominal 250 ms (no neighbour to measure it from).
+  EXPECT_NEAR(toSeconds(scan->azimuth_stamps_ns.back() - scan->azimuth_stamps_ns.front()), 0.25 * 399 / 400,
+              1e-3);
+}

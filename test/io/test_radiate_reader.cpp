@@ -6,6 +6,7 @@
 #include "io_test_util.h"
 #include "radarslam/io/dataset.h"
 #include "shared_data.h"
+#include "temp_dir.h"
 
 using namespace radarslam;
 
@@ -45,4 +46,40 @@ TEST(RadiateReader, RealFogScansDecodeTransposedWithSynthesizedTimes) {
   for (int a = 0; a < 400; a += 37)
     for (int b = 0; b < 576; b += 41) ASSERT_EQ(scan->row(a)[b], img.at<std::uint8_t>(b, a));
   EXPECT_EQ(readScanFile(reader->scanPath(5))->power, scan->power);
+}
+
+// Navtech_Polar/ alone (a copy without Navtech_Polar.txt or any other side file): the same scans,
+// timed by frame number at the nominal 4 Hz; the reader says what is missing.
+TEST(RadiateReader, WithoutFrameTimesFramesAreTimedByNumber) {
+  RADARSLAM_REQUIRE_REAL_DATA(dir, "radiate_tiny_foggy");
+  test::TempDir tmp;
+  std::filesystem::create_directory_symlink(dir / "Navtech_Polar", tmp / "Navtech_Polar");
+  const auto reader = openDataset(tmp.path());
+  const auto full = openDataset(dir);
+  EXPECT_EQ(reader->kind(), DatasetKind::Radiate);
+  ASSERT_EQ(reader->size(), 18u);
+  EXPECT_TRUE(full->missingParts().empty());
+  ASSERT_EQ(reader->missingParts().size(), 1u);
+  EXPECT_NE(reader->missingParts()[0].find("Navtech_Polar.txt missing"), std::string::npos);
+  EXPECT_EQ(reader->indexStamp(0), 946684800LL * kNsPerSec);  // frame 1 at 2000-01-01
+  for (std::size_t i = 0; i < reader->size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(reader->scanPath(i).filename(), full->scanPath(i).filename());
+    if (i > 0) {
+      EXPECT_EQ(reader->indexStamp(i) - reader->indexStamp(i - 1), 250'000'000);
+    }
+  }
+  const auto scan = reader->readScan(7);
+  EXPECT_EQ(scan->checkConsistency(), "");
+  EXPECT_EQ(scan->power, full->readScan(7)->power);
+  EXPECT_EQ(scan->refStampNs(), reader->indexStamp(7));
+  EXPECT_NEAR(toSeconds(scan->azimuth_stamps_ns.back() - scan->azimuth_stamps_ns.front()), 0.25 * 399 / 400,
+              1e-6);
+}
+
+TEST(RadiateReader, WithoutFrameTimesFileNamesMustBeFrameNumbers) {
+  test::TempDir tmp;
+  test::writeTransposedPng(tmp / "Navtech_Polar" / "000001.png", 40, 30);
+  test::writeTransposedPng(tmp / "Navtech_Polar" / "frame2.png", 40, 30);
+  test::expectInputError([&] { openDataset(tmp.path()); }, "frame2.png", "not a frame number");
 }

@@ -1,6 +1,10 @@
 #include <gtest/gtest.h>
 #include <mrpt/obs/CRawlog.h>
 
+#include <mrpt/io/CMemoryStream.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <algorithm>
 #include <random>
 
 #include "radarslam/obs/CObservationRadarScan.h"
@@ -21,6 +25,7 @@ CObservationRadarScan::Ptr makeScan(unsigned seed, std::uint32_t azimuths, std::
   for (std::uint32_t i = 0; i < azimuths; ++i) {
     s->azimuth_stamps_ns[i] = 1547131046353776000LL + i * 625000LL + seed;
     s->azimuth_valid[i] = (i % 7) ? 1 : 0;
+    if (seed % 2) s->azimuth_chirp[i] = (i % 2) ? 1 : -1;  // odd seeds: alternating chirp (RAS6)
   }
   s->sensorPose = mrpt::poses::CPose3D(-0.71813, 0.12, -0.54479, 0, 0.05, 0);
   s->updateReferenceTime();
@@ -65,6 +70,55 @@ TEST(CObservationRadarScan, RawlogRoundTripPreservesEveryByte) {
     EXPECT_EQ(r->azimuth_stamps_ns, e.azimuth_stamps_ns);
     EXPECT_EQ(r->azimuth_angles_rad, e.azimuth_angles_rad);
     EXPECT_EQ(r->azimuth_valid, e.azimuth_valid);
+    EXPECT_EQ(r->azimuth_chirp, e.azimuth_chirp);
+    EXPECT_EQ(r->hasChirpDirections(), i % 2 == 1);
     EXPECT_EQ(r->sensorPose, e.sensorPose);
   }
+}
+
+TEST(CObservationRadarScan, ChirpDirectionsAreChecked) {
+  auto s = makeScan(1, 40, 10);
+  EXPECT_TRUE(s->hasChirpDirections());
+  EXPECT_EQ(s->chirp(1), 1);
+  EXPECT_EQ(s->chirp(2), -1);
+  EXPECT_EQ(s->chirp(1000), 0);  // outside: unknown
+  s->azimuth_chirp.clear();      // empty = unknown everywhere, still consistent
+  EXPECT_EQ(s->checkConsistency(), "");
+  EXPECT_FALSE(s->hasChirpDirections());
+  s->azimuth_chirp.assign(39, 1);
+  EXPECT_NE(s->checkConsistency().find("azimuth_chirp"), std::string::npos);
+  s->azimuth_chirp.assign(40, 2);
+  EXPECT_NE(s->checkConsistency().find("azimuth_chirp"), std::string::npos);
+}
+
+// Rawlogs written before the chirp directions existed (serialization version 0) still load, with
+// the chirp unknown. The version-0 bytes are made from a version-1 object without chirp
+// directions: version byte 1 -> 0, and the trailing "no chirp" byte removed.
+TEST(CObservationRadarScan, VersionZeroArchivesStillLoad) {
+  registerRadarslamClasses();
+  auto s = makeScan(2, 30, 17);
+  ASSERT_FALSE(s->hasChirpDirections());
+  mrpt::io::CMemoryStream mem;
+  mrpt::serialization::archiveFrom(mem).WriteObject(s.get());
+  const auto* p = static_cast<const std::uint8_t*>(mem.getRawBufferData());
+  std::vector<std::uint8_t> bytes(p, p + mem.getTotalBytesCount());
+  const std::string name = "CObservationRadarScan";
+  const auto at = std::search(bytes.begin(), bytes.end(), name.begin(), name.end());
+  ASSERT_NE(at, bytes.end());
+  const auto version = at + static_cast<std::ptrdiff_t>(name.size());
+  ASSERT_EQ(*version, 1) << "version byte expected right after the class name";
+  *version = 0;
+  ASSERT_GE(bytes.size(), 2u);
+  ASSERT_EQ(bytes[bytes.size() - 2], 0) << "version 1 without chirps ends with a 0 flag byte";
+  bytes.erase(bytes.end() - 2);  // keep MRPT's end-of-object marker
+
+  mrpt::io::CMemoryStream in;
+  in.assignMemoryNotOwn(bytes.data(), bytes.size());
+  auto obj = mrpt::serialization::archiveFrom(in).ReadObject();
+  auto r = std::dynamic_pointer_cast<CObservationRadarScan>(obj);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->power, s->power);
+  EXPECT_EQ(r->azimuth_valid, s->azimuth_valid);
+  EXPECT_EQ(r->azimuth_chirp, std::vector<std::int8_t>(30, 0));
+  EXPECT_EQ(r->checkConsistency(), "");
 }

@@ -4,7 +4,9 @@
 
 #include <opencv2/core.hpp>
 
+#include <algorithm>
 #include <filesystem>
+#include <string>
 
 #include "radarslam/io/dataset.h"
 #include "radarslam/radar/cartesian.h"
@@ -42,6 +44,16 @@ TEST_P(SensorVariant, RendersAndReadsBackItsOwnGeometry) {
   EXPECT_DOUBLE_EQ(scan->range_resolution_m, v.resolution_m);
   EXPECT_DOUBLE_EQ(scan->range_offset_m, v.resolution_m / 2);
   EXPECT_NEAR(scan->maxRange(), v.bins * v.resolution_m + v.resolution_m / 2, 1e-9);
+  // The RAS6 alternates up/down chirps; the flag travels through byte 10 of the PNG rows.
+  const bool alternating = std::string(v.config) == "sim_boreas.yaml";
+  EXPECT_EQ(c.geometry.chirp, alternating ? "alternating" : "single");
+  EXPECT_EQ(scan->hasChirpDirections(), alternating);
+  if (alternating) {
+    EXPECT_EQ(scan->chirp(0), 1);
+    EXPECT_EQ(scan->chirp(1), -1);
+    EXPECT_EQ(scan->chirp(399), -1);
+    EXPECT_EQ(std::count(scan->azimuth_valid.begin(), scan->azimuth_valid.end(), 1), 400);
+  }
   // Something is seen, and the Cartesian image (scan's own geometry) is not empty.
   PolarToCartesian cart(CartesianParams{.size_px = 201, .m_per_px = 1.0});
   EXPECT_GT(cv::countNonZero(cart.convert(*scan)), 1000);

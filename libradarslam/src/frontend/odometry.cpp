@@ -58,6 +58,7 @@ struct Frame {
   std::vector<Eigen::Vector2d> raw;
   std::vector<double> dt;  ///< firing time of each keypoint relative to the reference time, s
   FeatureSet features;
+  bool doppler = false;  ///< taken from a Doppler-compensated copy of the scan
 
   void compensate(const BodyVelocity& v, bool enabled) {
     features.xy.resize(raw.size());
@@ -166,9 +167,46 @@ struct RadarOdometry::Impl {
     return inliers;
   }
 
-  OdometryStep process(const CObservationRadarScan& scan) {
+  /// Doppler compensation (radar/doppler_compensation.h) needs a tracked velocity: the last
+  /// pair's twist, the best estimate before a scan is matched. The scan's azimuth rows are moved
+  /// back by their offsets in a copy, before the Cartesian image is made (per azimuth: an
+  /// alternating-chirp sensor shifts neighbouring azimuths in opposite directions, which cannot
+  /// be undone per keypoint once the Cartesian image has blended them).
+  bool dopplerReady(StampNs stamp) const {
+    const auto& d = params.doppler;
+    return d.enabled && d.beta_s != 0.0 && velocity_known && have_keyframe &&
+           toSeconds(stamp - last_stamp) <= params.tracking.max_prediction_gap_s;
+  }
+  const CObservationRadarScan& dopplerCompensated(const CObservationRadarScan& scan) {
+    doppler_scan = scan;
+    compensateDoppler(doppler_scan, velocity, params.doppler.beta_s);
+    return doppler_scan;
+  }
+  CObservationRadarScan doppler_scan;  ///< scratch copy for dopplerCompensated()
+
+  /// A frame about to become the keyframe is re-made from the compensated scan if it was not
+  /// (the first frames, before a velocity was tracked): a scan is only matched against a keyframe
+  /// in the same state, since a single-chirp offset alone looks like a shift of ~beta * v / 2.
+  /// Its keypoints change, so it has no keyframe links.
+  void makeDopplerKeyframe(Frame& f, const CObservationRadarScan& scan_in, const BodyVelocity& mc_velocity,
+                           bool mc_enabled, OdometryStep& step) {
+    if (f.doppler || !params.doppler.enabled || params.doppler.beta_s == 0.0 || !velocity_known) return;
+    StageTimes scratch;
+    Frame g = makeFrame(dopplerCompensated(scan_in), scratch);
+    g.doppler = true;
+    g.pose = f.pose;
+    g.compensate(mc_velocity, mc_enabled);
+    f = std::move(g);
+    step.keyframe_links.clear();
+  }
+
+  OdometryStep process(const CObservationRadarScan& scan_in) {
     OdometryStep step;
+    // Compensated only when the keyframe is too (see makeDopplerKeyframe).
+    const bool doppler = dopplerReady(scan_in.refStampNs()) && keyframe.doppler;
+    const CObservationRadarScan& scan = doppler ? dopplerCompensated(scan_in) : scan_in;
     Frame f = makeFrame(scan, step.times);
+    f.doppler = doppler;
     step.stamp = f.stamp;
     step.keypoints = static_cast<int>(f.raw.size());
     const bool mc = params.tracking.motion_compensation;
@@ -348,6 +386,7 @@ struct RadarOdometry::Impl {
             step.keyframe_links.emplace_back(m.ref_index, m.cur_index);
         }
         f.pose = step.pose;
+        makeDopplerKeyframe(f, scan_in, cur_compensation, mc, step);
         keyframe = std::move(f);
         step.new_keyframe = true;
         step.keyframe_points = keyframe.features.xy;
@@ -363,6 +402,7 @@ struct RadarOdometry::Impl {
       if (!poor || lost_count > params.tracking.keep_keyframe_when_lost) {
         f.pose = step.pose;
         f.compensate(velocity, mc && velocity_known);
+        makeDopplerKeyframe(f, scan_in, velocity, mc && velocity_known, step);
         keyframe = std::move(f);
         step.new_keyframe = true;
         step.keyframe_points = keyframe.features.xy;

@@ -73,6 +73,8 @@ void loadParams(const YamlParams& yaml, OdometryParams& p) {
   t.get("acceleration_aware", p.tracking.acceleration_aware);
   t.get("compensation_passes", p.tracking.compensation_passes, Range::closed(0, 10));
   t.get("max_prediction_gap_s", p.tracking.max_prediction_gap_s, Range::above(0, 3600));
+
+  loadParams(odo.section("doppler"), p.doppler);
 }
 
 }  // namespace radarslam

@@ -1,5 +1,6 @@
 // Boreas: radar/<t_us>.png in the Oxford byte layout, stamped at the MIDDLE azimuth; column 10 is
-// unused (CIR204-H) or a chirp flag (RAS6), so every azimuth counts as valid; range offset -0.31 m;
+// unused (CIR204-H) or a chirp flag (RAS6: read into azimuth_chirp), so every azimuth counts as
+// valid; range offset -0.31 m;
 // applanix/radar_poses.csv ground truth (FORMATS.md section 3). Three geometries:
 //   CIR204-H 3360 bins x 0.0596 m (scans before UNIX 1632182400 s), 3360 x 0.04381 m after,
 //   RAS6 6848 bins x 0.04381 m (recognised by the image width).
@@ -32,6 +33,7 @@ class BoreasReader : public FileSequenceReader {
     OxfordStyleFormat format;
     format.use_valid_column = false;
     const bool ras6 = img.cols - kOxfordMetaColumns == static_cast<int>(kRas6Bins);
+    format.chirp_column = ras6;  // consecutive azimuths alternate up/down chirps (Boreas-RT)
     format.range_resolution_m = options_.range_resolution_m > 0                 ? options_.range_resolution_m
                                 : (ras6 || e.stamp >= kBoreasResolutionUpgrade) ? kBoreasNewResolution
                                                                                 : kBoreasOldResolution;

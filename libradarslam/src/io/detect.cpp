@@ -43,7 +43,7 @@ bool looksLikeBoreasRadarOnly(const fs::path& radar_dir) {
 
 const char* kExpected =
     "expected radar/ + radar.timestamps (Oxford), polar_oxford_form/ or sensor_data/radar/polar/ (MulRan), "
-    "radar/ + applanix/ or radar/ of Boreas scans alone (Boreas), Navtech_Polar/ + Navtech_Polar.txt "
+    "radar/ + applanix/ or radar/ of Boreas scans alone (Boreas), Navtech_Polar/ (+ Navtech_Polar.txt) "
     "(RADIATE), or a .rawlog file";
 }  // namespace
 
@@ -81,12 +81,8 @@ DatasetKind detectDatasetKind(const fs::path& path) {
   if (isDir(path / "sensor_data" / "radar" / "polar")) return DatasetKind::MulRanPolar;
   if (isDir(path / "radar") && (isDir(path / "applanix") || isDir(path / "calib")))
     return DatasetKind::Boreas;
-  if (isDir(path / "Navtech_Polar")) {
-    if (!isFile(path / "Navtech_Polar.txt"))
-      throw InputError((path / "Navtech_Polar.txt").string(),
-                       "missing RADIATE frame times (Navtech_Polar.txt)");
-    return DatasetKind::Radiate;
-  }
+  // Navtech_Polar.txt (frame times) is optional: without it the reader times frames by number.
+  if (isDir(path / "Navtech_Polar")) return DatasetKind::Radiate;
   if (isDir(path / "radar")) {
     if (looksLikeBoreasRadarOnly(path / "radar")) return DatasetKind::Boreas;
     throw InputError(

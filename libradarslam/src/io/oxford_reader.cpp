@@ -43,7 +43,8 @@ std::vector<IndexEntry> readRadarTimestamps(const std::filesystem::path& root) {
 }
 
 /// radar.geometry of a simulated sequence whose range geometry is not Oxford's (see
-/// io/oxford_writer.h): "range_resolution_m <m>" and "range_offset_m <m>" lines.
+/// io/oxford_writer.h): "range_resolution_m <m>" and "range_offset_m <m>" lines, and optionally
+/// "chirp_flag 1" (byte 10 of each row is the chirp flag of an alternating-chirp sensor).
 void readGeometryFile(const std::filesystem::path& file, OxfordStyleFormat& format) {
   auto in = openText(file, "range geometry");
   std::string text;
@@ -59,10 +60,12 @@ void readGeometryFile(const std::filesystem::path& file, OxfordStyleFormat& form
       format.range_resolution_m = v, res = true;
     else if (fields[0] == "range_offset_m" && std::abs(v) <= 100)
       format.range_offset_m = v, off = true;
+    else if (fields[0] == "chirp_flag" && (v == 0 || v == 1))
+      format.chirp_column = v == 1;
     else
       throw InputError(where,
                        "unknown key or value out of range (range_resolution_m in (0, 10], "
-                       "range_offset_m in [-100, 100])");
+                       "range_offset_m in [-100, 100], chirp_flag 0 or 1)");
   }
   if (!res || !off) throw InputError(file.string(), "needs range_resolution_m and range_offset_m");
 }
@@ -75,11 +78,14 @@ class OxfordReader : public FileSequenceReader {
     // The SDK and yeti put bin k at (k + 0.5) * resolution: the offset is half a bin.
     format_.range_offset_m = o.range_offset_m.value_or(format_.range_resolution_m / 2);
     // A simulated sequence of another sensor's geometry says so (explicit options still win).
-    if (const auto geo = root / "radar.geometry"; o.range_resolution_m <= 0 && std::filesystem::exists(geo)) {
+    if (const auto geo = root / "radar.geometry"; std::filesystem::exists(geo)) {
       OxfordStyleFormat f = format_;
       readGeometryFile(geo, f);
-      format_.range_resolution_m = f.range_resolution_m;
-      format_.range_offset_m = o.range_offset_m.value_or(f.range_offset_m);
+      format_.chirp_column = f.chirp_column;
+      if (o.range_resolution_m <= 0) {
+        format_.range_resolution_m = f.range_resolution_m;
+        format_.range_offset_m = o.range_offset_m.value_or(f.range_offset_m);
+      }
     }
     const auto gt = root / "gt" / "radar_odometry.csv";
     if (flags.load_ground_truth && std::filesystem::exists(gt)) ground_truth_ = readOxfordGroundTruth(gt);

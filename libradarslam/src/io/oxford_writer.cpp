@@ -34,6 +34,7 @@ std::vector<unsigned char> encodeOxfordPng(const CObservationRadarScan& scan, in
   const std::string problem = scan.checkConsistency();
   if (!problem.empty()) throw InputError("encodeOxfordPng", problem);
   const int rows = static_cast<int>(scan.num_azimuths), cols = 11 + static_cast<int>(scan.num_bins);
+  const bool chirp_flag = scan.hasChirpDirections();
   cv::Mat img(rows, cols, CV_8UC1);
   for (int a = 0; a < rows; ++a) {
     std::uint8_t* p = img.ptr<std::uint8_t>(a);
@@ -46,7 +47,10 @@ std::vector<unsigned char> encodeOxfordPng(const CObservationRadarScan& scan, in
         static_cast<std::uint16_t>(std::lround(angle / (2 * std::numbers::pi) * encoder_size) % encoder_size);
     p[8] = static_cast<std::uint8_t>(count & 0xFF);
     p[9] = static_cast<std::uint8_t>(count >> 8);
-    p[10] = scan.azimuth_valid[static_cast<std::size_t>(a)] ? 255 : 0;
+    if (chirp_flag)
+      p[10] = scan.chirp(static_cast<std::size_t>(a)) > 0 ? 255 : 0;
+    else
+      p[10] = scan.azimuth_valid[static_cast<std::size_t>(a)] ? 255 : 0;
     const auto row = scan.row(static_cast<std::size_t>(a));
     std::memcpy(p + 11, row.data(), row.size());
   }
@@ -74,6 +78,7 @@ void OxfordWriter::writeScan(const CObservationRadarScan& scan, const mrpt::math
     throw InputError(root_.string(), "scan stamps must increase (" + std::to_string(name) + ")");
   if (names_us_.empty()) {
     resolution_m_ = scan.range_resolution_m, offset_m_ = scan.range_offset_m;
+    chirp_flag_ = scan.hasChirpDirections();
   } else if (scan.range_resolution_m != resolution_m_ || scan.range_offset_m != offset_m_) {
     throw InputError(root_.string(), "all scans of a sequence must have the same range geometry");
   }
@@ -85,10 +90,10 @@ void OxfordWriter::writeScan(const CObservationRadarScan& scan, const mrpt::math
 
 void OxfordWriter::finish() {
   char line[256];
-  if (!names_us_.empty() && (std::abs(resolution_m_ - io_detail::kOxfordResolution) > 1e-12 ||
+  if (!names_us_.empty() && (chirp_flag_ || std::abs(resolution_m_ - io_detail::kOxfordResolution) > 1e-12 ||
                              std::abs(offset_m_ - resolution_m_ / 2) > 1e-12)) {
-    std::snprintf(line, sizeof line, "range_resolution_m %.10g\nrange_offset_m %.10g\n", resolution_m_,
-                  offset_m_);
+    std::snprintf(line, sizeof line, "range_resolution_m %.10g\nrange_offset_m %.10g\n%s", resolution_m_,
+                  offset_m_, chirp_flag_ ? "chirp_flag 1\n" : "");
     writeTextAtomically(root_ / "radar.geometry", line);
   }
   std::string stamps;

@@ -1,5 +1,6 @@
 #include "polar_png.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -54,9 +55,16 @@ CObservationRadarScan::Ptr decodeOxfordStyle(const cv::Mat& img, const std::file
       throw InputError(file.string(), rowWhere(r) + "timestamp goes backwards");
     scan->azimuth_stamps_ns[r] = t;
     scan->azimuth_angles_rad[r] = encoder / kEncoderCountsPerTurn * 2.0 * std::numbers::pi;
-    scan->azimuth_valid[r] = format.use_valid_column ? (p[10] == 255 ? 1 : 0) : 1;
+    scan->azimuth_valid[r] = format.use_valid_column && !format.chirp_column ? (p[10] == 255 ? 1 : 0) : 1;
+    scan->azimuth_chirp[r] = format.chirp_column ? (p[10] == 255 ? 1 : -1) : 0;
     std::memcpy(scan->row(r).data(), p + kOxfordMetaColumns, scan->num_bins);
   }
+  // A flag column that never changes is not an alternating chirp (e.g. a RAS6 scan recorded before
+  // pyboreas' radar_chirp_type_upgrade_time): single chirp, direction unknown.
+  if (format.chirp_column && !scan->azimuth_chirp.empty() &&
+      std::all_of(scan->azimuth_chirp.begin(), scan->azimuth_chirp.end(),
+                  [&](std::int8_t c) { return c == scan->azimuth_chirp.front(); }))
+    std::fill(scan->azimuth_chirp.begin(), scan->azimuth_chirp.end(), std::int8_t{0});
   if (scan->azimuth_stamps_ns.back() - scan->azimuth_stamps_ns.front() > 10 * kNsPerSec)
     throw InputError(file.string(), "sweep lasts more than 10 s (corrupt azimuth timestamps?)");
   scan->updateReferenceTime();

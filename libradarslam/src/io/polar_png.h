@@ -4,7 +4,8 @@
 // Oxford-style (Oxford, MulRan polar_oxford_form, Boreas): one row per azimuth; bytes 0-7 of a
 // row are the azimuth's int64 little-endian UNIX timestamp (unit from its digit count: us for
 // Oxford/Boreas, ns for MulRan), bytes 8-9 the uint16 LE encoder count (angle = count / 5600 * 2pi),
-// byte 10 the valid flag (255 = genuine reading), then one byte per range bin.
+// byte 10 the valid flag (255 = genuine reading; Boreas: unused; RAS6 / Boreas-RT: the chirp
+// flag, 255 = up-chirp, 0 = down-chirp), then one byte per range bin.
 //
 // Transposed (MulRan sensor_data/radar/polar, RADIATE Navtech_Polar): rows = range bins,
 // columns = azimuths, no metadata; stamps and angles are supplied by the caller.
@@ -23,6 +24,12 @@ struct OxfordStyleFormat {
   double range_offset_m = 0.0;
   /// false for Boreas, whose column 10 is unused / a chirp flag: every azimuth is valid.
   bool use_valid_column = true;
+  /// true for RAS6 (and simulated alternating-chirp sequences): column 10 is the chirp flag,
+  /// 255 -> azimuth_chirp +1 (up), anything else -> -1 (down). Implies use_valid_column = false.
+  /// Which flag value is the up-chirp is our assumption (pyboreas documents only "chirp flag");
+  /// a sensor with the opposite convention is handled by the sign of its Doppler beta. A column
+  /// that is the same on every row is no alternation: azimuth_chirp stays 0 (single / unknown).
+  bool chirp_column = false;
 };
 
 /// Decodes an Oxford-style polar image. Throws InputError(file, ...) if the image is too narrow,

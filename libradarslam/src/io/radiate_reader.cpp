@@ -6,6 +6,10 @@
 // reference time, the mid-sweep, is exactly the dataset's frame time and the error of this
 // guess is at most half a sweep whichever convention the recorder used) and spread the azimuths
 // evenly over one sweep = the median interval between consecutive frames (robust to dropped frames).
+//
+// Navtech_Polar.txt is optional (a folder of the polar images alone): the frames are then indexed
+// by their numbers (<frame>.png) and timed at the nominal 4 Hz, frame n at kNoTimesEpoch + (n - 1)
+// * 250 ms. Absolute time, the real frame rate and gaps from dropped frames are then unknown.
 #include <algorithm>
 #include <map>
 #include <string>
@@ -52,10 +56,46 @@ std::vector<IndexEntry> readFrameTimes(const std::filesystem::path& root) {
   return index;
 }
 
+// 2000-01-01 00:00:00 UTC: a plausible UNIX time, obviously not a real recording time.
+constexpr StampNs kNoTimesEpoch = 946684800LL * kNsPerSec;
+
+bool hasFrameTimes(const std::filesystem::path& root) {
+  std::error_code ec;
+  return std::filesystem::exists(root / "Navtech_Polar.txt", ec);
+}
+
+/// Navtech_Polar/<frame>.png by frame number (1-based, any zero padding), at the nominal 4 Hz.
+std::vector<IndexEntry> frameNumberIndex(const std::filesystem::path& root) {
+  const auto dir = root / "Navtech_Polar";
+  std::vector<std::pair<long long, std::filesystem::path>> frames;
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const auto& p = it->path();
+    if (p.extension() != ".png") continue;
+    const std::string stem = p.stem().string();
+    if (stem.empty() || stem.size() > 9 || stem.find_first_not_of("0123456789") != std::string::npos)
+      throw InputError(p.string(), "RADIATE frame file name is not a frame number (<digits>.png)");
+    frames.emplace_back(std::stoll(stem), p);
+  }
+  if (ec) throw InputError(dir.string(), "cannot list: " + ec.message());
+  if (frames.empty()) throw InputError(dir.string(), "no *.png frames");
+  std::sort(frames.begin(), frames.end());
+  std::vector<IndexEntry> index;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (i > 0 && frames[i].first == frames[i - 1].first)
+      throw InputError(frames[i].second.string(),
+                       "same frame number as " + frames[i - 1].second.filename().string());
+    index.push_back({kNoTimesEpoch + (frames[i].first - 1) * kNominalSweepNs, frames[i].second});
+  }
+  return index;
+}
+
 class RadiateReader : public FileSequenceReader {
  public:
   RadiateReader(const std::filesystem::path& root, const ReaderOptions& o)
-      : FileSequenceReader(DatasetKind::Radiate, root, readFrameTimes(root)) {
+      : FileSequenceReader(DatasetKind::Radiate, root,
+                           hasFrameTimes(root) ? readFrameTimes(root) : frameNumberIndex(root)),
+        frame_times_(hasFrameTimes(root)) {
     resolution_ = o.range_resolution_m > 0 ? o.range_resolution_m : kRadiateResolution;
     offset_ = o.range_offset_m.value_or(resolution_ / 2);  // bin centres, as for Oxford's CTS350-X
     std::vector<StampNs> d;
@@ -66,6 +106,12 @@ class RadiateReader : public FileSequenceReader {
     }
   }
   std::string sensorName() const override { return "Navtech CTS350-X"; }
+  std::vector<std::string> missingParts() const override {
+    if (frame_times_) return {};
+    return {
+        "Navtech_Polar.txt missing: frames timed by their numbers at the nominal 4 Hz from "
+        "2000-01-01 (no absolute time; dropped frames and the real frame rate are not seen)"};
+  }
   CObservationRadarScan::Ptr readScan(std::size_t i) const override {
     const cv::Mat img = readImage(i);
     return decodeTransposed(
@@ -74,6 +120,7 @@ class RadiateReader : public FileSequenceReader {
   }
 
  private:
+  bool frame_times_ = true;
   double resolution_ = kRadiateResolution;
   double offset_ = 0.0;
   StampNs sweep_ns_ = kNominalSweepNs;

@@ -30,6 +30,11 @@ void CObservationRadarScan::resize(std::uint32_t azimuths, std::uint32_t bins) {
   for (std::uint32_t i = 0; i < azimuths; ++i)
     azimuth_angles_rad[i] = 2.0 * std::numbers::pi * i / std::max<std::uint32_t>(azimuths, 1);
   azimuth_valid.assign(azimuths, 1);
+  azimuth_chirp.assign(azimuths, 0);
+}
+
+bool CObservationRadarScan::hasChirpDirections() const {
+  return std::any_of(azimuth_chirp.begin(), azimuth_chirp.end(), [](std::int8_t c) { return c != 0; });
 }
 
 StampNs CObservationRadarScan::refStampNs() const {
@@ -52,6 +57,11 @@ std::string CObservationRadarScan::checkConsistency() const {
   else if (azimuth_stamps_ns.size() != num_azimuths || azimuth_angles_rad.size() != num_azimuths ||
            azimuth_valid.size() != num_azimuths)
     why << "per-azimuth arrays do not have " << num_azimuths << " entries";
+  else if (!azimuth_chirp.empty() && azimuth_chirp.size() != num_azimuths)
+    why << "azimuth_chirp has " << azimuth_chirp.size() << " entries, expected 0 or " << num_azimuths;
+  else if (std::any_of(azimuth_chirp.begin(), azimuth_chirp.end(),
+                       [](std::int8_t c) { return c < -1 || c > 1; }))
+    why << "azimuth_chirp values must be -1, 0 or +1";
   else if (!(range_resolution_m > 0.0) || !std::isfinite(range_resolution_m))
     why << "range resolution must be > 0 (got " << range_resolution_m << ")";
   else if (!std::isfinite(range_offset_m))
@@ -77,7 +87,9 @@ void CObservationRadarScan::getDescriptionAsText(std::ostream& o) const {
 }
 
 // Version 0 layout: label, timestamp, sensor pose, geometry, per-azimuth arrays, power.
-uint8_t CObservationRadarScan::serializeGetVersion() const { return 0; }
+// Version 1 appends the chirp directions: uint8 1 + num_azimuths int8 values, or uint8 0 when
+// unknown for every azimuth. Version 0 archives read as "chirp unknown".
+uint8_t CObservationRadarScan::serializeGetVersion() const { return 1; }
 
 void CObservationRadarScan::serializeTo(mrpt::serialization::CArchive& out) const {
   out << sensorLabel << timestamp << sensorPose;
@@ -86,10 +98,13 @@ void CObservationRadarScan::serializeTo(mrpt::serialization::CArchive& out) cons
   out.WriteBufferFixEndianness(azimuth_angles_rad.data(), azimuth_angles_rad.size());
   out.WriteBuffer(azimuth_valid.data(), azimuth_valid.size());
   out.WriteBuffer(power.data(), power.size());
+  const bool chirps = hasChirpDirections() && azimuth_chirp.size() == num_azimuths;
+  out << static_cast<std::uint8_t>(chirps ? 1 : 0);
+  if (chirps) out.WriteBuffer(azimuth_chirp.data(), azimuth_chirp.size());
 }
 
 void CObservationRadarScan::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version) {
-  if (version != 0) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+  if (version > 1) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
   std::uint32_t label_bytes = 0;  // the layout of `in >> sensorLabel`, with a bound on the length
   in >> label_bytes;
   if (label_bytes > kMaxLabelBytes) THROW_EXCEPTION_FMT("corrupt radar scan: label of %u bytes", label_bytes);
@@ -109,6 +124,14 @@ void CObservationRadarScan::serializeFrom(mrpt::serialization::CArchive& in, uin
   in.ReadBufferFixEndianness(azimuth_angles_rad.data(), azimuth_angles_rad.size());
   in.ReadBuffer(azimuth_valid.data(), azimuth_valid.size());
   in.ReadBuffer(power.data(), power.size());
+  azimuth_chirp.assign(num_azimuths, 0);
+  if (version >= 1) {
+    std::uint8_t chirps = 0;
+    in >> chirps;
+    if (chirps > 1) THROW_EXCEPTION_FMT("corrupt radar scan: chirp flag %u", static_cast<unsigned>(chirps));
+    if (chirps == 1 && in.ReadBuffer(azimuth_chirp.data(), azimuth_chirp.size()) != azimuth_chirp.size())
+      throw mrpt::serialization::CExceptionEOF("radar scan chirp directions end early");
+  }
 }
 
 }  // namespace radarslam

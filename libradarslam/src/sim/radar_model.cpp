@@ -55,6 +55,10 @@ void loadGeometry(const YamlParams& y, RadarGeometry& g) {
   y.get("range_resolution_m", g.range_resolution_m, Range::closed(0.001, 10));
   y.get("rotation_hz", g.rotation_hz, Range::closed(0.1, 100));
   y.get("encoder_size", g.encoder_size, Range::closed(16, 1000000.0));
+  y.get("doppler_beta_s", g.doppler_beta_s, Range::closed(-1, 1));
+  y.get("chirp", g.chirp);
+  if (g.chirp != "single" && g.chirp != "alternating")
+    y.fail("chirp", "must be 'single' or 'alternating', not '" + g.chirp + "'");
 }
 
 void loadPhysics(const YamlParams& y, RadarPhysics& p) {
@@ -292,6 +296,18 @@ struct RadarRenderer::Impl {
     }
   }
 
+  /// FMCW Doppler: every return of a beam fired at `t` in direction `d` (world) appears
+  /// s * beta * u nearer, u = the sensor's velocity along the beam (the returned offset; static
+  /// world: movers get the sensor's speed too; ghosts the direct path's offset). Velocity by
+  /// central difference of the route over +-5 ms.
+  double dopplerOffset(StampNs t, int azimuth, const Vec2& d) const {
+    constexpr StampNs h = 5'000'000;
+    const auto p0 = route.poseAt(t - h), p1 = route.poseAt(t + h);
+    const double u = ((p1.x - p0.x) * d.x + (p1.y - p0.y) * d.y) / toSeconds(2 * h);
+    const int s = g.chirp == "alternating" && azimuth % 2 ? -1 : 1;
+    return s * g.doppler_beta_s * u;
+  }
+
   void traceBeams(StampNs start, StampNs period) {
     std::fill(signal.begin(), signal.end(), 0.0f);
     std::fill(max_direct.begin(), max_direct.end(), 0.0f);
@@ -309,11 +325,12 @@ struct RadarRenderer::Impl {
         const double theta = pose.phi + g.angle(a) + frac * step;
         const Vec2 o{pose.x, pose.y}, d{std::cos(theta), std::sin(theta)};
         caster.cast(o, d, max_range, dynamic, hits);
+        const double doppler = g.doppler_beta_s != 0.0 ? dopplerOffset(t, a, d) : 0.0;
         if (j == J / 2) groundClutter(a, o, d, pose.phi);
         double through = 1.0;
         for (const RayHit& h : hits) {
           const float power = hitPower(h, h.range, through);
-          splat(a + frac, h.range, power, h.surface->depth_m);
+          splat(a + frac, std::max(0.0, h.range - doppler), power, h.surface->depth_m);
           max_direct[static_cast<std::size_t>(a)] = std::max(max_direct[static_cast<std::size_t>(a)], power);
           // Multipath: a smooth wall seen near normal mirrors the beam; what it then hits
           // appears behind the wall at the total path length.
@@ -328,7 +345,7 @@ struct RadarRenderer::Impl {
               const float ghost = hitPower(gh, total, through) * J *
                                   static_cast<float>(dbToLinear(p.multipath_db)) *
                                   (1.0f - h.surface->roughness) * h.surface->reflectivity;
-              splat(a + frac, total, ghost, gh.surface->depth_m);
+              splat(a + frac, std::max(0.0, total - doppler), ghost, gh.surface->depth_m);
             }
           }
           through *= h.surface->transmission;
@@ -422,6 +439,7 @@ void RadarRenderer::render(StampNs start, std::uint64_t scan_index, CObservation
   for (int i = 0; i < g.azimuths; ++i) {
     out.azimuth_stamps_ns[static_cast<std::size_t>(i)] = azimuthStamp(start, i);
     out.azimuth_angles_rad[static_cast<std::size_t>(i)] = g.angle(i);
+    if (g.chirp == "alternating") out.azimuth_chirp[static_cast<std::size_t>(i)] = i % 2 ? -1 : 1;
   }
   out.updateReferenceTime();
   impl_->traceBeams(start, g.scanPeriodNs());

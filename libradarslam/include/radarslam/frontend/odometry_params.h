@@ -9,6 +9,7 @@
 #include "radarslam/frontend/pose_refiner.h"
 #include "radarslam/frontend/radius_matcher.h"
 #include "radarslam/radar/cartesian.h"
+#include "radarslam/radar/doppler_compensation.h"
 
 namespace radarslam {
 
@@ -50,10 +51,12 @@ struct OdometryParams {
   RefineParams refine;
   KeyframeParams keyframes;
   TrackingParams tracking;
+  /// Doppler range offset removal (radar/doppler_compensation.h) with the tracked ego velocity.
+  DopplerParams doppler;
 };
 
 /// Overrides from `cartesian:` and `odometry:` {keypoints, matching, outliers, refine, keyframes,
-/// tracking} of `yaml`. Throws InputError for bad values.
+/// tracking, doppler} of `yaml`. Throws InputError for bad values.
 void loadParams(const YamlParams& yaml, OdometryParams& params);
 
 }  // namespace radarslam

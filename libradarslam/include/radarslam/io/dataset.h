@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "radarslam/core/trajectory.h"
 #include "radarslam/obs/CObservationRadarScan.h"
@@ -52,6 +53,10 @@ class DatasetReader {
   virtual CObservationRadarScan::Ptr readScan(std::size_t i) const = 0;
   /// Path of the file holding scan i (for messages); the .rawlog itself for rawlogs.
   virtual std::filesystem::path scanPath(std::size_t i) const = 0;
+
+  /// Optional parts of the layout that are absent other than the ground truth, each as
+  /// "<file> missing: <what that disables>" (for `radarslam info`); empty when complete.
+  virtual std::vector<std::string> missingParts() const { return {}; }
 
   /// Ground truth as absolute radar SE(2) poses; empty if the dataset has none.
   virtual const Trajectory& groundTruth() const = 0;

@@ -9,6 +9,11 @@
 // Angles: azimuth angle in radians in the sensor frame, 0 along the sensor's +x axis and
 // increasing towards +y (the Oxford SDK convention: x forward, y right for a z-down radar).
 //
+// Chirp direction (`azimuth_chirp`): +1 up-chirp, -1 down-chirp, 0 unknown or a single-chirp
+// sensor (CTS350-X, CIR204-H). The RAS6 (Boreas-RT) alternates up and down chirps between
+// consecutive azimuths (byte 10 of its rows: 255 / 0); the FMCW Doppler range offset has opposite
+// signs for the two (radar/doppler_compensation.h). Empty = unknown for every azimuth.
+//
 // Reference time (`timestamp`, and refStampNs()): the midpoint between the first and the last
 // azimuth's timestamps. Ground truth poses and estimated poses of a scan are given at this time;
 // motion compensation expresses every azimuth's returns in the sensor frame at this time.
@@ -38,11 +43,13 @@ class CObservationRadarScan : public mrpt::obs::CObservation {
   std::vector<StampNs> azimuth_stamps_ns;   ///< per azimuth, ns UNIX
   std::vector<double> azimuth_angles_rad;   ///< per azimuth, see the angle convention above
   std::vector<std::uint8_t> azimuth_valid;  ///< 1 = genuine reading, 0 = interpolated/unknown
+  std::vector<std::int8_t> azimuth_chirp;   ///< per azimuth +1 up / -1 down / 0 unknown; or empty
 
   /// Pose of the radar on the vehicle (identity when poses are given for the radar itself).
   mrpt::poses::CPose3D sensorPose;
 
-  /// Allocates an all-zero scan with the given geometry (angles uniform, all valid, stamps 0).
+  /// Allocates an all-zero scan with the given geometry (angles uniform, all valid, stamps 0,
+  /// chirp unknown).
   void resize(std::uint32_t azimuths, std::uint32_t bins);
 
   std::span<const std::uint8_t> row(std::size_t azimuth) const {
@@ -53,6 +60,10 @@ class CObservationRadarScan : public mrpt::obs::CObservation {
     return range_offset_m + static_cast<double>(bin) * range_resolution_m;
   }
   double maxRange() const { return binRange(num_bins); }
+  /// Chirp direction of an azimuth (+1 up, -1 down, 0 unknown / single chirp).
+  int chirp(std::size_t azimuth) const { return azimuth < azimuth_chirp.size() ? azimuth_chirp[azimuth] : 0; }
+  /// True if any azimuth has a known chirp direction.
+  bool hasChirpDirections() const;
 
   /// Midpoint of the first and last azimuth stamps (the scan's reference time, see above).
   StampNs refStampNs() const;

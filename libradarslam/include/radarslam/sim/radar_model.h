@@ -33,6 +33,12 @@ struct RadarGeometry {
   double range_resolution_m = 0.0432;  ///< valid [0.001, 10]
   double rotation_hz = 4.0;            ///< 4 Hz = 240 rpm; valid [0.1, 100]
   int encoder_size = 5600;             ///< encoder counts per revolution (Navtech); valid [16, 1000000]
+  // FMCW Doppler range offset (radar/doppler_compensation.h): a static target at radial closing
+  // speed u appears s * beta * u nearer. chirp "single": every azimuth an up-chirp (s = +1;
+  // CTS350-X, CIR204-H); "alternating": even azimuths up, odd down (RAS6; scans carry
+  // azimuth_chirp and the writer puts the chirp flag into byte 10 of each row).
+  double doppler_beta_s = 0.0;   ///< Doppler range offset per m/s radial speed, s; 0 = off; valid [-1, 1]
+  std::string chirp = "single";  ///< single | alternating (up/down chirps on alternate azimuths)
 
   double maxRange() const { return bins * range_resolution_m; }
   StampNs scanPeriodNs() const;
@@ -106,7 +112,8 @@ struct Weather {
 /// "clear", "fog", "rain" or "snow". Throws InputError for anything else.
 Weather weatherPreset(const std::string& name);
 
-/// Overrides from a YAML section (keys = field names).
+/// Overrides from a YAML section (keys = field names). Throws InputError for a chirp other than
+/// single / alternating.
 void loadGeometry(const YamlParams& yaml, RadarGeometry& g);
 void loadPhysics(const YamlParams& yaml, RadarPhysics& p);
 
