@@ -25,6 +25,7 @@ void loadParams(const YamlParams& yaml, LocalizerParams& p) {
   yaml.get("confirm_fixes", p.confirm_fixes, Range::closed(1, 100));
   yaml.get("confirm_distance_m", p.confirm_distance_m, Range::above(0, 1000));
   yaml.get("confirm_angle_deg", p.confirm_angle_deg, Range::above(0, 180));
+  yaml.get("odometry_adaptive_radius", p.odometry_adaptive_radius);
   loadParams(yaml.section("peak_cloud"), p.peaks);
   loadParams(yaml.section("global"), p.global);
   loadParams(yaml.section("tracker"), p.tracker);
@@ -88,7 +89,11 @@ struct Localizer::Impl {
                                              : KeyframeMap{}),
         map(p.map_sweep_period_s > 0 ? compensated : map_in),
         params(p),
-        odometry(op),
+        odometry([&] {
+          OdometryParams o = op;
+          o.matching.adaptive_radius = p.odometry_adaptive_radius;
+          return o;
+        }()),
         global(map, p.global),
         tracker(map, p.tracker),
         chi2_threshold(chi2Quantile3(p.integrity.chi2_probability)),

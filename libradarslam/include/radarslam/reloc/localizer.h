@@ -51,6 +51,11 @@ struct LocalizerParams {
   int confirm_fixes = 2;            ///< valid [1, 100]
   double confirm_distance_m = 2.0;  ///< agreement of consecutive fixes; valid (0, 1000]
   double confirm_angle_deg = 5.0;   ///< valid (0, 180]
+  // The odometry's adaptive search radius (frontend/motion_prior_bound.h) is off here by default:
+  // with it, LocalizeIntegrity.DriveOutOfTheMapAndBack takes the known false global fix 108 m off
+  // in a look-alike street (docs/localization.md, "Known failure") also in the GCC build; the fix
+  // belongs in the global-fix confirmation (issue 14), not in the odometry.
+  bool odometry_adaptive_radius = false;  ///< overrides odometry.matching.adaptive_radius
 };
 
 /// Overrides from the `localization:` section of `yaml`: motion_compensation, max_missed_scans,
