@@ -289,14 +289,14 @@ LoopVerification verifyLoop(std::span<const RadarPoint> query, std::span<const R
   // 4. Acceptance on the full clouds.
   const PointIndex2D cfull(toVec(candidate));
   std::vector<Vec2> aligned;
-  aligned.reserve(query.size());
+  if (params.estimate_information) aligned.reserve(query.size());
   double sum2 = 0;
   std::array<bool, 8> sectors{};
   const double gate2 = params.inlier_distance_m * params.inlier_distance_m;
   for (const auto& p : query) {
     const Vec2 qp(p.x, p.y);
     const Vec2 tp = pose.apply(qp);
-    aligned.push_back(tp);
+    if (params.estimate_information) aligned.push_back(tp);
     const double d2 = cfull.nearest(tp).first;
     if (d2 >= gate2) continue;
     ++out.inliers;
@@ -309,8 +309,9 @@ LoopVerification verifyLoop(std::span<const RadarPoint> query, std::span<const R
   out.rms_m = out.inliers > 0 ? std::sqrt(sum2 / static_cast<double>(out.inliers)) : 0.0;
   out.inlier_ratio =
       static_cast<double>(out.inliers) / static_cast<double>(std::min(query.size(), candidate.size()));
-  out.information = alignmentInformation(aligned, Vec2(pose.x, pose.y), cfull, params.inlier_distance_m,
-                                         params.information);
+  if (params.estimate_information)
+    out.information = alignmentInformation(aligned, Vec2(pose.x, pose.y), cfull, params.inlier_distance_m,
+                                           params.information);
 
   if (out.ambiguity_ratio > params.max_ambiguity_ratio)
     out.reason = "ambiguous place (a distant alignment scores almost as well)";

@@ -42,6 +42,7 @@ std::vector<RadarPoint> toRadarPoints(const std::vector<KeyframePoint>& pts) {
 
 GlobalLocalizer::GlobalLocalizer(const KeyframeMap& map, const GlobalLocalizerParams& params)
     : map_(map), params_(params) {
+  params_.verifier.estimate_information = false;  // a global fix never uses the loop information
   const std::size_t expected_length = static_cast<std::size_t>(params.m2dp.azimuths * params.m2dp.elevations +
                                                                params.m2dp.rings * params.m2dp.sectors);
   descriptors_.reserve(map.keyframes.size());

@@ -103,13 +103,16 @@ void LoopCloser::process(std::uint64_t id) {
     }
     const std::size_t n = std::min<std::size_t>(
         candidates.size(), previous_closed_loop_ ? lc.max_verifications_after_loop : lc.max_verifications);
+    // The alignment's information is only used when the graph is given it (loopInformation).
+    LoopVerifierParams verifier = lc.verifier;
+    verifier.estimate_information = lc.loop_information_estimated;
     for (std::size_t c = 0; c < n; ++c) {
       std::shared_ptr<const std::vector<RadarPoint>> match_cloud;
       {
         std::lock_guard lock(state_.mutex);
         match_cloud = state_.keyframes.at(candidates[c].keyframe).cloud;
       }
-      const LoopVerification v = verifyLoop(*cloud, *match_cloud, params_.loop_closing.verifier);
+      const LoopVerification v = verifyLoop(*cloud, *match_cloud, verifier);
       LoopRecord rec;
       rec.query = id;
       rec.match = candidates[c].keyframe;

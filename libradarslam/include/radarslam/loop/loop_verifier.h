@@ -49,6 +49,9 @@ struct LoopVerifierParams {
   int min_inlier_sectors = 4;           ///< of 8 bearing sectors around the query sensor; valid [0, 8]
   /// keys normal_radius_m, linearity_ratio, correlation_length_m, min_sigma_m
   AlignmentInformationParams information;
+  /// Not a YAML key: the caller says whether it uses LoopVerification::information (a radius
+  /// search and a 2x2 PCA per aligned point); false leaves it zero.
+  bool estimate_information = true;
 };
 
 /// Overrides `params` from the YAML keys of the same names.
