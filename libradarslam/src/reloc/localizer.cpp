@@ -26,6 +26,7 @@ void loadParams(const YamlParams& yaml, LocalizerParams& p) {
   yaml.get("confirm_distance_m", p.confirm_distance_m, Range::above(0, 1000));
   yaml.get("confirm_angle_deg", p.confirm_angle_deg, Range::above(0, 180));
   yaml.get("odometry_adaptive_radius", p.odometry_adaptive_radius);
+  yaml.get("gate_fixes_with_odometry", p.gate_fixes_with_odometry);
   loadParams(yaml.section("peak_cloud"), p.peaks);
   loadParams(yaml.section("global"), p.global);
   loadParams(yaml.section("tracker"), p.tracker);
@@ -84,6 +85,15 @@ struct Localizer::Impl {
   std::size_t fixes = 0;
   std::optional<mrpt::math::TPose2D> pending;  ///< last unconfirmed fix, moved with the odometry
   int pending_count = 0;                       ///< consecutive agreeing fixes so far
+  /// While lost: the last pose dead-reckoned on with the odometry and its growing covariance, as
+  /// long as the odometry keeps tracking without a data gap (no prior after a kidnap, a gap or a
+  /// lost odometry scan; none before the first fix). Global fixes must agree with it (chi^2).
+  struct Prior {
+    mrpt::math::TPose2D pose;
+    Eigen::Matrix3d cov;
+  };
+  std::optional<Prior> prior;
+  StampNs last_stamp = 0;
   Impl(const KeyframeMap& map_in, const OdometryParams& op, const LocalizerParams& p)
       : compensated(p.map_sweep_period_s > 0 ? compensateMapMotion(map_in, p.map_sweep_period_s)
                                              : KeyframeMap{}),
@@ -99,6 +109,10 @@ struct Localizer::Impl {
         chi2_threshold(chi2Quantile3(p.integrity.chi2_probability)),
         fits(p.integrity),
         window(p.integrity) {}
+  void loseTrack(const mrpt::math::TPose2D& last, const Eigen::Matrix3d& last_cov) {
+    if (params.gate_fixes_with_odometry) prior = Prior{last, last_cov};
+    loseTrack();
+  }
   void loseTrack() {
     have_pose = false;
     lost_scans = 0;
@@ -127,6 +141,9 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
   auto t0 = Clock::now();
   const OdometryStep step = m.odometry.process(scan);
   res.timing.odometry = msSince(t0);
+  const bool data_gap = m.last_stamp != 0 && toSeconds(res.stamp - m.last_stamp) >
+                                                 m.odometry.params().tracking.max_prediction_gap_s;
+  m.last_stamp = res.stamp;
   auto [cloud, cloud_ms] = cloud_job.get();
   t0 = Clock::now();
   if (m.params.motion_compensation) compensateMotion(cloud, scan, step.velocity);
@@ -209,7 +226,7 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
       // Dead reckoning with the odometry, reported as degraded while its covariance stays bounded.
       m.window.addPose(false, predicted, predicted_cov);
       if (++m.missed > ip.max_failures || position3Sigma(predicted_cov) > ip.max_position_3sigma_m) {
-        m.loseTrack();
+        m.loseTrack(predicted, predicted_cov);
       } else {
         report(predicted, predicted_cov, LocalizationStatus::Degraded);
       }
@@ -219,6 +236,17 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
   }
 
   if (m.pending) m.pending = compose(*m.pending, step.motion);
+  if (m.prior) {
+    // Dead reckoning goes on only through scans the odometry tracked (a lost or re-initialised
+    // odometry, or a gap in the data, says nothing about the motion: a kidnapping looks like that).
+    if (step.status != TrackingStatus::Tracking || data_gap) {
+      m.prior.reset();
+    } else {
+      m.prior->cov =
+          composeCovariance(m.prior->pose, m.prior->cov, step.motion, odometryCovariance(step.motion, ip));
+      m.prior->pose = compose(m.prior->pose, step.motion);
+    }
+  }
   if (m.lost_scans++ % m.params.global_retry_interval != 0) return res;
   t0 = Clock::now();
   const GlobalFix fix = m.global.localize(cloud);
@@ -226,7 +254,15 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
   if (fix.found) {
     // Refine and check the fix against the local submap (same tests as tracking).
     TrackResult tr = m.tracker.track(cloud, fix.pose);
-    if (tr.accepted) refined = std::move(tr);
+    // A fix the dead-reckoned pose rules out (chi^2 of the difference under both covariances) is a
+    // look-alike place, however well it verifies (docs/localization.md, "Global fixes").
+    if (tr.accepted && m.prior &&
+        mahalanobis2(poseDifference(m.prior->pose, tr.icp.pose), m.prior->cov + tr.icp.covariance) >
+            m.chi2_threshold) {
+      res.check = "prior";
+    } else if (tr.accepted) {
+      refined = std::move(tr);
+    }
   }
   if (!refined) {
     m.pending.reset();
@@ -245,6 +281,7 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
       m.window.addMotion(step.motion, Eigen::Matrix3d::Zero());
       m.window.addPose(true, res.pose, res.covariance);
       ++m.fixes;
+      m.prior.reset();
       m.pending.reset();
       m.pending_count = 0;
     }
