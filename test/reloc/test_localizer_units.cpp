@@ -127,6 +127,31 @@ TEST(RelocCovariance, CorridorIsUncertainAlongTheWalls) {
   EXPECT_GT(r.covariance(0, 0), 100 * r.covariance(1, 1));
 }
 
+TEST(RelocCovariance, HeadingFloorAddsTheModelErrorVarianceOnlyToTheHeading) {
+  // A scattered scene: every direction well constrained, so sigma^2 H^-1 alone is tiny.
+  std::vector<Eigen::Vector2d> pts;
+  for (int i = 0; i < 400; ++i) pts.emplace_back(40 * std::sin(1.3 * i), 40 * std::cos(0.7 * i + 0.2));
+  const LocalSubmap submap = LocalSubmap::fromPoints(pts, 0.1);
+  std::vector<RadarPoint> scan;
+  for (const auto& q : pts) {
+    RadarPoint p;
+    p.x = static_cast<float>(q.x() + 0.02 * std::sin(5 * q.y()));
+    p.y = static_cast<float>(q.y());
+    scan.push_back(p);
+  }
+  IcpParams none;
+  none.heading_sigma_floor_deg = 0;
+  IcpParams floored;
+  floored.heading_sigma_floor_deg = 0.25;
+  const IcpResult a = submap.registerScan(scan, {0.1, -0.1, 0.005}, none);
+  const IcpResult b = submap.registerScan(scan, {0.1, -0.1, 0.005}, floored);
+  EXPECT_LT(std::sqrt(a.covariance(2, 2)) * 180 / M_PI, 0.05);  // the point model alone: overconfident
+  const double floor_rad = 0.25 * M_PI / 180;
+  EXPECT_NEAR(b.covariance(2, 2) - a.covariance(2, 2), floor_rad * floor_rad, 1e-12);
+  EXPECT_NEAR(b.covariance(0, 0), a.covariance(0, 0), 1e-15);
+  EXPECT_NEAR(b.covariance(0, 2), a.covariance(0, 2), 1e-15);
+}
+
 TEST(RelocParams, LoadFromYamlAndRejectUnknownKeys) {
   const YamlParams yaml = YamlParams::fromText(
       "localization:\n  max_missed_scans: 5\n  global:\n    candidates: 9\n    m2dp:\n      rings: 6\n"

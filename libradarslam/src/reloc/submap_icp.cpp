@@ -34,6 +34,7 @@ void loadParams(const YamlParams& yaml, IcpParams& p) {
   yaml.get("max_scan_points", max_points, Range::closed(10, 1000000.0));
   yaml.get("min_sigma_m", p.min_sigma_m, Range::closed(0, 100));
   yaml.get("covariance_scale", p.covariance_scale, Range::above(0, 1000000.0));
+  yaml.get("heading_sigma_floor_deg", p.heading_sigma_floor_deg, Range::closed(0, 90));
   if (p.max_correspondence_m < p.inlier_distance_m)
     yaml.fail("max_correspondence_m", "must be >= inlier_distance_m");
   p.max_scan_points = static_cast<std::size_t>(max_points);
@@ -254,6 +255,8 @@ IcpResult LocalSubmap::registerScan(std::span<const RadarPoint> scan, const mrpt
     res.covariance = params.covariance_scale * sigma2 * es.eigenvectors() * inv_l.asDiagonal() *
                      es.eigenvectors().transpose();
     res.covariance = 0.5 * (res.covariance + res.covariance.transpose()).eval();
+    const double floor_rad = params.heading_sigma_floor_deg * M_PI / 180;
+    res.covariance(2, 2) += floor_rad * floor_rad;
   } else {
     res.covariance = Eigen::Matrix3d::Identity() * 1e6;
   }

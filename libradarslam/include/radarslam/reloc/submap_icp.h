@@ -10,7 +10,8 @@
 // (along the wall's normal), elsewhere point-to-point.
 // Covariance = sigma^2 H^-1 (pseudo-inverse with eigenvalues clamped at 1e-6; H = Gauss-Newton Hessian J^T W
 // J of the final inliers, sigma^2 = their weighted residual variance, at least min_sigma_m^2) times
-// covariance_scale (> 1 because neighbouring radar points are not independent measurements).
+// covariance_scale (> 1 because neighbouring radar points are not independent measurements), plus
+// a heading model-error variance heading_sigma_floor_deg^2.
 #include <mrpt/math/TPose2D.h>
 #include <Eigen/Core>
 
@@ -48,6 +49,10 @@ struct IcpParams {
   double min_sigma_m = 0.05;           ///< valid [0, 100]
   double covariance_scale =
       50.0;  ///< calibrated on the simulator demo (docs/localization.md); valid (0, 1000000]
+  /// Heading model error added to the covariance (1 sigma): the scan-to-map heading error is
+  /// systematic (lag-1 autocorrelation 0.85), not the independent point noise sigma^2 H^-1 models;
+  /// chosen on train sequences (docs/localization.md, "Calibrated covariance"); valid [0, 90]
+  double heading_sigma_floor_deg = 0.25;
 };
 
 void loadParams(const YamlParams& yaml, SubmapParams& params);
