@@ -293,13 +293,14 @@ int runLocalize(int argc, char** argv) {
                   r.pose.x, r.pose.y, r.pose.phi, c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2),
                   r.fit_score, r.inliers, r.timing.total());
     side << line << sideFileExtra(map, r) << "\n";
+    if (dds) dds->publishStatus(r, localizer.globalFixes(), r.localised);
     if (r.localised) {
       if (r.keyframe >= 0) boreas << boreasRow(map, r);
       ++localised;
       fixes += r.status == LocalizationStatus::GlobalFix;
       if (first_fix < 0) first_fix = static_cast<long>(f.index - first);
       poses.push_back({r.stamp, r.pose});
-      if (dds) dds->publishPose(r.stamp, r.pose, r.covariance);
+      if (dds) dds->publishPose(r.stamp, r.pose, r.covariance);  // just after its status
       fits.push_back(r.fit_score);
       if (gt) {
         if (const auto t = interpolatePose(truth->truth, r.stamp)) {
@@ -355,8 +356,8 @@ int runLocalize(int argc, char** argv) {
   std::printf("  poses          %s (%zu localised scans), per-scan details %s\n", out.string().c_str(),
               localised, side_file ? side_path.string().c_str() : "not written (-o is a special file)");
   if (dds_opts.publish)
-    std::printf("  published      %zu poses on %s (domain %u)\n", dds->posesPublished(), ddsPoseTopic(),
-                dds_opts.domain_id);
+    std::printf("  published      %zu poses on %s and %zu statuses on %s (domain %u)\n",
+                dds->posesPublished(), ddsPoseTopic(), done, ddsStatusTopic(), dds_opts.domain_id);
   if (gt) {
     std::ostringstream s;
     s << "  truth          " << truth->how << "\n";

@@ -101,7 +101,7 @@ int runOdometry(int argc, char** argv) {
   RadarOdometry odometry(params);
   ScanIterator scans(*reader, skip_arg.getValue(), first, end);
   const auto t0 = Clock::now();
-  std::size_t done = 0, lost = 0, keyframes = 0;
+  std::size_t done = 0, lost = 0, keyframes = 0, widened = 0;
   StageTimes total;
   ProgressLine progress("odometry", scans.total(), !quiet_arg.getValue());
   const auto tail = [&] { return "lost " + std::to_string(lost); };
@@ -110,6 +110,7 @@ int runOdometry(int argc, char** argv) {
     ++done;
     lost += step.status == TrackingStatus::Lost;
     keyframes += step.new_keyframe;
+    widened += step.widened;
     const auto& t = step.times;
     total.cartesian += t.cartesian, total.detect += t.detect, total.describe += t.describe;
     total.align_prep += t.align_prep, total.match += t.match, total.clique += t.clique, total.svd += t.svd;
@@ -125,8 +126,10 @@ int runOdometry(int argc, char** argv) {
   const double n = static_cast<double>(done);
   std::printf("odometry summary\n");
   std::printf(
-      "  scans          %zu tracked, %zu lost (constant-velocity prediction), %zu skipped, %zu keyframes\n",
-      done - lost, lost, scans.skipped(), keyframes);
+      "  scans          %zu tracked, %zu lost (constant-velocity prediction), %zu skipped, %zu keyframes; "
+      "%zu "
+      "re-matched with the wide radius (adaptive radius: the motion left its bound)\n",
+      done - lost, lost, scans.skipped(), keyframes, widened);
   const ScanIteratorStats& input = scans.stats();
   std::printf(
       "  input          %zu duplicate scans skipped, %zu unreadable skipped, %zu blank scans, %zu time gaps "

@@ -1,7 +1,10 @@
 #include "localize_dds.h"
 
 #include <array>
+#include <cmath>
 #include <thread>
+
+#include <Eigen/Eigenvalues>
 
 #include <radarslam/core/errors.h>
 #include <radarslam/core/log.h>
@@ -25,6 +28,7 @@ std::optional<std::string> ddsScanTopic(const std::string& dir) {
 }
 
 const char* ddsPoseTopic() { return dds::kPoseTopic; }
+const char* ddsStatusTopic() { return dds::kLocalizationStatusTopic; }
 
 LocalizeDds::LocalizeDds(const LocalizeDdsOptions& options) : options_(options) {
   if (options_.domain_id > dds::kMaxDomainId)
@@ -35,7 +39,11 @@ LocalizeDds::LocalizeDds(const LocalizeDdsOptions& options) : options_(options) 
   domain_ = std::make_unique<dds::Domain>(
       options_.domain_id, options_.config_file.empty() ? std::string(dds::kLoopbackConfigXml)
                                                        : dds::readConfigFile(options_.config_file));
-  if (options_.publish) poses_ = std::make_unique<dds::PosePublisher>(*domain_);
+  if (options_.publish) {
+    poses_ = std::make_unique<dds::PosePublisher>(*domain_);
+    status_ = std::make_unique<dds::Publisher<dds::LocalizationStatusMsg>>(
+        *domain_, dds::kLocalizationStatusTopic, dds::TopicQos::stream(10));
+  }
 }
 
 LocalizeDds::~LocalizeDds() = default;
@@ -43,7 +51,8 @@ LocalizeDds::~LocalizeDds() = default;
 bool LocalizeDds::waitForPoseSubscribers() {
   if (!poses_ || options_.wait_subscribers == 0) return true;
   const auto deadline = std::chrono::steady_clock::now() + toMs(options_.timeout_s);
-  while (poses_->matchedSubscriptions() < options_.wait_subscribers) {
+  while (poses_->matchedSubscriptions() < options_.wait_subscribers ||
+         status_->matchedSubscriptions() < options_.wait_subscribers) {
     if (std::chrono::steady_clock::now() > deadline) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
@@ -69,10 +78,34 @@ void LocalizeDds::publishPose(StampNs stamp, const mrpt::math::TPose2D& pose,
   ++published_;
 }
 
+void LocalizeDds::publishStatus(const LocalizationResult& r, std::size_t global_fixes, bool pose_published) {
+  if (!status_) return;
+  dds::LocalizationStatusMsg m;
+  m.header = {dds::toTimeMsg(r.stamp), "map"};
+  m.status = toString(r.status);
+  m.level = r.status == LocalizationStatus::Lost ? 2 : r.status == LocalizationStatus::Degraded ? 1 : 0;
+  m.check = r.check;
+  m.pose_published = pose_published;
+  m.keyframe = r.localised ? static_cast<std::int32_t>(r.keyframe) : -1;
+  m.fit_score = r.fit_score;
+  m.inliers = static_cast<std::uint32_t>(r.inliers);
+  if (r.localised) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(r.covariance.topLeftCorner<2, 2>());
+    m.sigma_xy_m = std::sqrt(std::max(0.0, es.eigenvalues()(1)));
+    m.sigma_yaw_rad = std::sqrt(std::max(0.0, r.covariance(2, 2)));
+  }
+  m.global_fixes = static_cast<std::uint32_t>(global_fixes);
+  status_->publish(m);
+}
+
 void LocalizeDds::flush() {
   if (poses_ && poses_->matchedSubscriptions() > 0 &&
       !poses_->waitForAcknowledgements(toMs(options_.timeout_s)))
     logger().logFmt(mrpt::system::LVL_WARN, "localize: not every pose subscriber acknowledged all poses");
+  if (status_ && status_->matchedSubscriptions() > 0 &&
+      !status_->waitForAcknowledgements(toMs(options_.timeout_s)))
+    logger().logFmt(mrpt::system::LVL_WARN,
+                    "localize: not every status subscriber acknowledged all statuses");
 }
 
 }  // namespace radarslam::cli

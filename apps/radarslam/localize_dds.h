@@ -1,6 +1,7 @@
 #pragma once
 // The DDS side of `radarslam localize` (docs/dds.md): publishing the localised poses on
-// rt/radarslam/pose (--publish) and a live scan source (DIR = "dds:" or "dds:TOPIC") that takes
+// rt/radarslam/pose and every scan's integrity status on rt/radarslam/localization_status
+// (--publish), and a live scan source (DIR = "dds:" or "dds:TOPIC") that takes
 // radarslam/RadarScan messages until no scan arrived for --dds-timeout seconds.
 #include <chrono>
 #include <cstdint>
@@ -13,10 +14,14 @@
 
 #include <radarslam/core/time.h>
 #include <radarslam/obs/CObservationRadarScan.h>
+#include <radarslam/reloc/localizer.h>
 
 namespace radarslam::dds {
 class Domain;
 class PosePublisher;
+template <class Msg>
+class Publisher;
+struct LocalizationStatusMsg;
 class ScanSubscriber;
 }  // namespace radarslam::dds
 
@@ -26,6 +31,8 @@ namespace radarslam::cli {
 std::optional<std::string> ddsScanTopic(const std::string& dir);
 /// The topic --publish sends the poses on (rt/radarslam/pose).
 const char* ddsPoseTopic();
+/// The topic --publish sends every scan's status on (rt/radarslam/localization_status).
+const char* ddsStatusTopic();
 
 struct LocalizeDdsOptions {
   bool publish = false;                   ///< --publish
@@ -43,7 +50,8 @@ class LocalizeDds {
   explicit LocalizeDds(const LocalizeDdsOptions& options);
   ~LocalizeDds();
 
-  /// Waits (at most --dds-timeout) for --wait-subscribers pose subscribers; false on timeout.
+  /// Waits (at most --dds-timeout) for --wait-subscribers subscribers of the poses and of the
+  /// status; false on timeout.
   bool waitForPoseSubscribers();
   /// Starts receiving scans (call when ready to localise: scans sent before are not buffered).
   void startScans();
@@ -51,7 +59,10 @@ class LocalizeDds {
   CObservationRadarScan::Ptr nextScan();
   /// Publishes one localised pose (no-op without --publish); covariance of (x, y, phi).
   void publishPose(StampNs stamp, const mrpt::math::TPose2D& pose, const Eigen::Matrix3d& covariance);
-  /// Waits until the pose subscribers acknowledged every pose (before the process exits).
+  /// Publishes the scan's status (no-op without --publish); `pose_published`: publishPose was
+  /// called for it.
+  void publishStatus(const LocalizationResult& result, std::size_t global_fixes, bool pose_published);
+  /// Waits until the subscribers acknowledged every pose and status (before the process exits).
   void flush();
   std::size_t posesPublished() const { return published_; }
 
@@ -59,6 +70,7 @@ class LocalizeDds {
   LocalizeDdsOptions options_;
   std::unique_ptr<dds::Domain> domain_;
   std::unique_ptr<dds::PosePublisher> poses_;
+  std::unique_ptr<dds::Publisher<dds::LocalizationStatusMsg>> status_;
   std::unique_ptr<dds::ScanSubscriber> scans_;
   std::size_t published_ = 0;
 };

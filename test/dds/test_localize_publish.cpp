@@ -1,6 +1,7 @@
 // `radarslam localize` on DDS, real processes on loopback (docs/dds.md): --publish sends one
-// PoseWithCovarianceStamped per localised scan, identical to the TUM/CSV outputs; DIR = dds: takes
-// the scans from radarslam-scan-publisher.
+// PoseWithCovarianceStamped per localised scan, identical to the TUM/CSV outputs, and one
+// LocalizationStatus per scan (lost ones too) agreeing with the CSV; DIR = dds: takes the scans
+// from radarslam-scan-publisher.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -64,16 +65,23 @@ TEST(LocalizePublish, PublishedPosesEqualTheWrittenPoses) {
   const unsigned dom_id = test::testDomainId(10);
   dds::Domain dom(dom_id);
   dds::Subscription<dds::PoseWithCovarianceStampedMsg> sub(dom, dds::kPoseTopic, dds::TopicQos::stream(200));
+  dds::Subscription<dds::LocalizationStatusMsg> status_sub(dom, dds::kLocalizationStatusTopic,
+                                                           dds::TopicQos::stream(200));
   const fs::path out = w.tmp.path() / "out.tum";
   test::Child loc(
       {RADARSLAM_CLI, "localize", w.map.string(), w.data.string(), "-o", out.string(), "--publish",
        "--domain", std::to_string(dom_id), "--wait-subscribers", "1", "--dds-timeout", "10", "-q"},
       w.tmp.path() / "loc");
   std::vector<dds::PoseWithCovarianceStampedMsg> got;
+  std::vector<dds::LocalizationStatusMsg> statuses;
   const auto deadline = std::chrono::steady_clock::now() + 60s * test::timeScale();
   for (bool exited = false;;) {
+    bool any = false;
+    while (auto st = status_sub.take(0ms)) statuses.push_back(*st), any = true;
     if (auto m = sub.take(200ms)) {
       got.push_back(*m);
+    } else if (any) {
+      continue;
     } else if (exited || std::chrono::steady_clock::now() > deadline) {
       break;
     } else {
@@ -84,9 +92,32 @@ TEST(LocalizePublish, PublishedPosesEqualTheWrittenPoses) {
   EXPECT_NE(loc.out().find("published"), std::string::npos) << loc.out();
 
   const auto tum = rows(out);
+  const auto all_rows = rows(out.string() + ".csv");
+  // One status per scan, in order, agreeing with the CSV; pose_published exactly for localised scans.
+  ASSERT_EQ(statuses.size(), all_rows.size()) << loc.err();
+  std::size_t with_pose = 0;
+  for (std::size_t i = 0; i < statuses.size(); ++i) {
+    const auto& st = statuses[i];
+    const auto& r = all_rows[i];
+    EXPECT_EQ(formatStampSeconds(dds::fromTimeMsg(st.header.stamp)), r[0]) << i;
+    EXPECT_EQ(st.status, r[2]) << i;
+    EXPECT_EQ(st.pose_published, r[3] == "1") << i;
+    EXPECT_EQ(st.level, r[2] == "lost" ? 2 : r[2] == "degraded" ? 1 : 0) << i;
+    if (st.pose_published) {
+      ++with_pose;
+      EXPECT_GE(st.keyframe, 0) << i;
+      EXPECT_NEAR(st.sigma_yaw_rad, std::sqrt(std::stod(r[12])), 1e-4 * std::sqrt(std::stod(r[12]))) << i;
+      EXPECT_GE(st.sigma_xy_m * st.sigma_xy_m * (1 + 1e-4), std::max(std::stod(r[7]), std::stod(r[10]))) << i;
+    } else {
+      EXPECT_EQ(st.keyframe, -1) << i;
+      EXPECT_EQ(st.sigma_xy_m, 0.0) << i;
+    }
+  }
+  EXPECT_GE(statuses.back().global_fixes, 1u);
   std::vector<std::vector<std::string>> side;
-  for (const auto& r : rows(out.string() + ".csv"))
+  for (const auto& r : all_rows)
     if (r[3] == "1") side.push_back(r);
+  EXPECT_EQ(with_pose, side.size());
   ASSERT_GE(tum.size(), 30u) << loc.out();  // the localiser itself works on this world
   ASSERT_EQ(side.size(), tum.size());
   ASSERT_EQ(got.size(), tum.size()) << loc.err();

@@ -178,6 +178,39 @@ MapInfoMsg fromC(const radarslam_msg_dds__MapInfo_& in) {
   return m;
 }
 
+// --- radarslam/LocalizationStatus -------------------------------------------------------------
+template <>
+void toC(const LocalizationStatusMsg& m, radarslam_msg_dds__LocalizationStatus_& out,
+         std::vector<sensor_msgs_msg_dds__PointField_>&) {
+  toC(m.header, out.header);
+  out.level = m.level;
+  out.status = view(m.status);
+  out.check = view(m.check);
+  out.pose_published = m.pose_published;
+  out.keyframe = m.keyframe;
+  out.fit_score = m.fit_score;
+  out.inliers = m.inliers;
+  out.sigma_xy_m = m.sigma_xy_m;
+  out.sigma_yaw_rad = m.sigma_yaw_rad;
+  out.global_fixes = m.global_fixes;
+}
+template <>
+LocalizationStatusMsg fromC(const radarslam_msg_dds__LocalizationStatus_& in) {
+  LocalizationStatusMsg m;
+  m.header = fromC(in.header);
+  m.level = in.level;
+  m.status = copyStr(in.status);
+  m.check = copyStr(in.check);
+  m.pose_published = in.pose_published;
+  m.keyframe = in.keyframe;
+  m.fit_score = in.fit_score;
+  m.inliers = in.inliers;
+  m.sigma_xy_m = in.sigma_xy_m;
+  m.sigma_yaw_rad = in.sigma_yaw_rad;
+  m.global_fixes = in.global_fixes;
+  return m;
+}
+
 // --- radarslam/RadarScan ----------------------------------------------------------------------
 template <>
 void toC(const RadarScanMsg& m, radarslam_msg_dds__RadarScan_& out,

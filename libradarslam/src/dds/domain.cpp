@@ -281,5 +281,6 @@ RADARSLAM_DDS_INSTANTIATE(OctomapMsg);
 RADARSLAM_DDS_INSTANTIATE(PoseWithCovarianceStampedMsg);
 RADARSLAM_DDS_INSTANTIATE(MapInfoMsg);
 RADARSLAM_DDS_INSTANTIATE(RadarScanMsg);
+RADARSLAM_DDS_INSTANTIATE(LocalizationStatusMsg);
 
 }  // namespace radarslam::dds

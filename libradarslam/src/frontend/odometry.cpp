@@ -172,9 +172,9 @@ struct RadarOdometry::Impl {
   /// back by their offsets in a copy, before the Cartesian image is made (per azimuth: an
   /// alternating-chirp sensor shifts neighbouring azimuths in opposite directions, which cannot
   /// be undone per keypoint once the Cartesian image has blended them).
+  bool dopplerOn() const { return params.doppler.enabled && params.doppler.beta_s != 0.0 && velocity_known; }
   bool dopplerReady(StampNs stamp) const {
-    const auto& d = params.doppler;
-    return d.enabled && d.beta_s != 0.0 && velocity_known && have_keyframe &&
+    return dopplerOn() && have_keyframe &&
            toSeconds(stamp - last_stamp) <= params.tracking.max_prediction_gap_s;
   }
   const CObservationRadarScan& dopplerCompensated(const CObservationRadarScan& scan) {
@@ -190,7 +190,7 @@ struct RadarOdometry::Impl {
   /// Its keypoints change, so it has no keyframe links.
   void makeDopplerKeyframe(Frame& f, const CObservationRadarScan& scan_in, const BodyVelocity& mc_velocity,
                            bool mc_enabled, OdometryStep& step) {
-    if (f.doppler || !params.doppler.enabled || params.doppler.beta_s == 0.0 || !velocity_known) return;
+    if (f.doppler || !dopplerOn()) return;
     StageTimes scratch;
     Frame g = makeFrame(dopplerCompensated(scan_in), scratch);
     g.doppler = true;
@@ -239,8 +239,7 @@ struct RadarOdometry::Impl {
     const bool adaptive = params.matching.adaptive_radius;
     const bool wide = !velocity_known || gap || (!adaptive && lost_count > 0);
     const SearchRadius radius =
-        wide ? SearchRadius{params.matching.init_radius_m, 0.0, params.matching.init_radius_m}
-             : bound.radius(lost_count);
+        wide ? SearchRadius::fixed(params.matching.init_radius_m) : bound.radius(lost_count);
 
     BodyVelocity v = velocity_known ? velocity : BodyVelocity{};
     BodyVelocity cur_compensation = v;

@@ -70,7 +70,7 @@ double SearchRadius::at(double range_m) const {
 Correspondences matchWithinRadius(const FeatureSet& cur, const FeatureSet& ref,
                                   const mrpt::math::TPose2D& prior, double radius_m,
                                   const MatchParams& params) {
-  return matchWithinRadius(cur, ref, prior, SearchRadius{radius_m, 0.0, radius_m}, params);
+  return matchWithinRadius(cur, ref, prior, SearchRadius::fixed(radius_m), params);
 }
 
 Correspondences matchWithinRadius(const FeatureSet& cur, const FeatureSet& ref,

@@ -93,9 +93,11 @@ std::vector<IndexEntry> frameNumberIndex(const std::filesystem::path& root) {
 class RadiateReader : public FileSequenceReader {
  public:
   RadiateReader(const std::filesystem::path& root, const ReaderOptions& o)
+      : RadiateReader(root, o, hasFrameTimes(root)) {}
+  RadiateReader(const std::filesystem::path& root, const ReaderOptions& o, bool frame_times)
       : FileSequenceReader(DatasetKind::Radiate, root,
-                           hasFrameTimes(root) ? readFrameTimes(root) : frameNumberIndex(root)),
-        frame_times_(hasFrameTimes(root)) {
+                           frame_times ? readFrameTimes(root) : frameNumberIndex(root)),
+        frame_times_(frame_times) {
     resolution_ = o.range_resolution_m > 0 ? o.range_resolution_m : kRadiateResolution;
     offset_ = o.range_offset_m.value_or(resolution_ / 2);  // bin centres, as for Oxford's CTS350-X
     std::vector<StampNs> d;

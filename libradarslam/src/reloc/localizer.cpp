@@ -65,6 +65,22 @@ long nearestKeyframe(const KeyframeMap& map, const mrpt::math::TPose2D& p) {
   }
   return best;
 }
+/// Covariance of keyframe b's pose relative to keyframe a's, in the map frame, with the odometry
+/// noise model compounded along the keyframes between them (map order: the order they were
+/// driven; loop closures make the true uncertainty smaller, so this is conservative).
+Eigen::Matrix3d mapChainCovariance(const KeyframeMap& map, long a, long b, const IntegrityParams& ip) {
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  if (a < 0 || b < 0 || a == b) return cov;
+  if (a > b) std::swap(a, b);
+  mrpt::math::TPose2D at = map.keyframes[static_cast<std::size_t>(a)].pose;
+  for (long k = a + 1; k <= b; ++k) {
+    const auto& next = map.keyframes[static_cast<std::size_t>(k)].pose;
+    const mrpt::math::TPose2D rel = (mrpt::poses::CPose2D(next) - mrpt::poses::CPose2D(at)).asTPose();
+    cov = composeCovariance(at, cov, rel, odometryCovariance(rel, ip));
+    at = next;
+  }
+  return cov;
+}
 }  // namespace
 
 struct Localizer::Impl {
@@ -91,7 +107,9 @@ struct Localizer::Impl {
   struct Prior {
     mrpt::math::TPose2D pose;
     Eigen::Matrix3d cov;
+    long anchor = -1;  ///< the map keyframe of the last trusted registration
   };
+  long trusted_keyframe = -1;  ///< nearest map keyframe of the last tracking / global_fix pose
   std::optional<Prior> prior;
   StampNs last_stamp = 0;
   Impl(const KeyframeMap& map_in, const OdometryParams& op, const LocalizerParams& p)
@@ -110,7 +128,7 @@ struct Localizer::Impl {
         fits(p.integrity),
         window(p.integrity) {}
   void loseTrack(const mrpt::math::TPose2D& last, const Eigen::Matrix3d& last_cov) {
-    if (params.gate_fixes_with_odometry) prior = Prior{last, last_cov};
+    if (params.gate_fixes_with_odometry) prior = Prior{last, last_cov, trusted_keyframe};
     loseTrack();
   }
   void loseTrack() {
@@ -158,6 +176,8 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     res.covariance = cov;
     res.status = status;
     res.keyframe = nearestKeyframe(m.map, pose);
+    if (status == LocalizationStatus::Tracking || status == LocalizationStatus::GlobalFix)
+      m.trusted_keyframe = res.keyframe;
   };
   auto accept = [&](const TrackResult& tr, LocalizationStatus status) {
     m.missed = 0;
@@ -256,9 +276,13 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     TrackResult tr = m.tracker.track(cloud, fix.pose);
     // A fix the dead-reckoned pose rules out (chi^2 of the difference under both covariances) is a
     // look-alike place, however well it verifies (docs/localization.md, "Global fixes").
+    // The map is not exact either: where the fix lies in another part of the map than the prior's
+    // anchor, the two parts' relative pose is uncertain as the odometry that built them.
     if (tr.accepted && m.prior &&
-        mahalanobis2(poseDifference(m.prior->pose, tr.icp.pose), m.prior->cov + tr.icp.covariance) >
-            m.chi2_threshold) {
+        mahalanobis2(poseDifference(m.prior->pose, tr.icp.pose),
+                     m.prior->cov +
+                         mapChainCovariance(m.map, m.prior->anchor, nearestKeyframe(m.map, tr.icp.pose), ip) +
+                         tr.icp.covariance) > m.chi2_threshold) {
       res.check = "prior";
     } else if (tr.accepted) {
       refined = std::move(tr);

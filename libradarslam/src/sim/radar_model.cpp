@@ -20,6 +20,8 @@ int RadarGeometry::encoder(int i) const {
 
 double RadarGeometry::angle(int i) const { return 2.0 * std::numbers::pi * encoder(i) / encoder_size; }
 
+int RadarGeometry::chirpSign(int i) const { return chirp == "alternating" && i % 2 ? -1 : 1; }
+
 Weather weatherPreset(const std::string& name) {
   Weather w;
   w.name = name;
@@ -160,6 +162,7 @@ struct RadarRenderer::Impl {
   std::vector<float> near_clutter;  // per bin: housing/mount returns + weather volume clutter
   std::vector<float> stc;           // per bin: sensitivity time control gain on echoes
   std::vector<float> max_direct;    // per azimuth, strongest direct return
+  std::vector<int> chirp_sign;      // per azimuth, RadarGeometry::chirpSign
   std::vector<float> ground;        // azimuths x (bins / kGroundStep), ground clutter power
   static constexpr int kGroundStep = 16;
   std::vector<float> lobe;  // main-lobe gain at offsets (k / kLobeSteps) azimuths
@@ -181,6 +184,7 @@ struct RadarRenderer::Impl {
     near_clutter.resize(B);
     stc.resize(B);
     max_direct.resize(static_cast<std::size_t>(g.azimuths));
+    for (int a = 0; a < g.azimuths; ++a) chirp_sign.push_back(g.chirpSign(a));
     ground.resize(static_cast<std::size_t>(g.azimuths) * (B / kGroundStep + 1));
     const double floor_gain = dbToLinear(weather.noise_floor_gain_db);
     for (std::size_t b = 0; b < B; ++b) {
@@ -304,8 +308,7 @@ struct RadarRenderer::Impl {
     constexpr StampNs h = 5'000'000;
     const auto p0 = route.poseAt(t - h), p1 = route.poseAt(t + h);
     const double u = ((p1.x - p0.x) * d.x + (p1.y - p0.y) * d.y) / toSeconds(2 * h);
-    const int s = g.chirp == "alternating" && azimuth % 2 ? -1 : 1;
-    return s * g.doppler_beta_s * u;
+    return chirp_sign[static_cast<std::size_t>(azimuth)] * g.doppler_beta_s * u;
   }
 
   void traceBeams(StampNs start, StampNs period) {
@@ -439,7 +442,8 @@ void RadarRenderer::render(StampNs start, std::uint64_t scan_index, CObservation
   for (int i = 0; i < g.azimuths; ++i) {
     out.azimuth_stamps_ns[static_cast<std::size_t>(i)] = azimuthStamp(start, i);
     out.azimuth_angles_rad[static_cast<std::size_t>(i)] = g.angle(i);
-    if (g.chirp == "alternating") out.azimuth_chirp[static_cast<std::size_t>(i)] = i % 2 ? -1 : 1;
+    if (g.chirp == "alternating")
+      out.azimuth_chirp[static_cast<std::size_t>(i)] = static_cast<std::int8_t>(g.chirpSign(i));
   }
   out.updateReferenceTime();
   impl_->traceBeams(start, g.scanPeriodNs());

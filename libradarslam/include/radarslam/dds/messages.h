@@ -18,6 +18,7 @@ inline constexpr const char* kCloudMapTopic = "rt/radarslam/cloud_map";
 inline constexpr const char* kOctomapTopic = "rt/radarslam/octomap";
 inline constexpr const char* kMapInfoTopic = "rt/radarslam/map_info";
 inline constexpr const char* kPoseTopic = "rt/radarslam/pose";
+inline constexpr const char* kLocalizationStatusTopic = "rt/radarslam/localization_status";
 inline constexpr const char* kRadarScanTopic = "rt/radarslam/radar_scan";
 
 /// builtin_interfaces/Time.
@@ -105,6 +106,21 @@ struct MapInfoMsg {
   std::string manifest_sha256;  ///< SHA-256 (hex) of the map's manifest.yaml
   TimeMsg created;              ///< map creation time
   bool operator==(const MapInfoMsg&) const = default;
+};
+
+/// radarslam/LocalizationStatus: the localiser's integrity status of one scan.
+struct LocalizationStatusMsg {
+  HeaderMsg header;        ///< stamp = the scan's reference time, frame_id = "map"
+  std::uint8_t level = 2;  ///< 0 OK (global_fix, tracking), 1 WARN (degraded), 2 ERROR (lost)
+  std::string status;      ///< global_fix | tracking | degraded | lost
+  std::string check;       ///< failed integrity check, "" if none
+  bool pose_published = false;
+  std::int32_t keyframe = -1;
+  double fit_score = 0;
+  std::uint32_t inliers = 0;
+  double sigma_xy_m = 0, sigma_yaw_rad = 0;
+  std::uint32_t global_fixes = 0;
+  bool operator==(const LocalizationStatusMsg&) const = default;
 };
 
 /// radarslam/RadarScan: one polar sweep (see CObservationRadarScan and dds/scan_messages.h).

@@ -40,6 +40,7 @@ struct SearchRadius {
   double per_range = 0.0;  ///< metres of radius per metre of range (k sigma_heading)
   double max_m = 4.0;
   double at(double range_m) const;
+  static SearchRadius fixed(double r) { return {r, 0.0, r}; }
 };
 
 struct FeatureSet {

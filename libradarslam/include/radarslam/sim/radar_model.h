@@ -45,6 +45,8 @@ struct RadarGeometry {
   /// Encoder count of azimuth i (Oxford: 13, 27, ..., 5599).
   int encoder(int i) const;
   double angle(int i) const;  ///< radians, from the encoder count
+  /// Chirp direction of azimuth i: +1 up, -1 down (chirp "alternating": odd azimuths).
+  int chirpSign(int i) const;
 };
 
 struct RadarPhysics {
