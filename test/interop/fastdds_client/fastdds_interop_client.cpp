@@ -180,17 +180,17 @@ struct Sub {
   fdds::DataReader* reader = nullptr;
   std::size_t received = 0;
   bool matched = false;
-  std::function<bool(fdds::DataReader*)> take;  // takes one sample and prints it; false if none
+  std::function<bool(fdds::DataReader*, bool)> take;  // takes one sample, prints it if asked; false if none
 };
 
 template <class Msg>
-std::function<bool(fdds::DataReader*)> taker(std::function<void(const Msg&)> print) {
-  return [print](fdds::DataReader* r) {
+std::function<bool(fdds::DataReader*, bool)> taker(std::function<void(const Msg&)> print) {
+  return [print](fdds::DataReader* r, bool print_it) {
     Msg m;
     fdds::SampleInfo info;
     while (r->take_next_sample(&m, &info) == ReturnCode_t::RETCODE_OK) {
       if (info.valid_data) {
-        print(m);
+        if (print_it) print(m);
         return true;
       }
     }
@@ -249,7 +249,7 @@ int main(int argc, char** argv) {
 
   std::vector<Sub> subs;
   auto add = [&](const std::string& name, const char* topic, fdds::TypeSupport type, bool latched,
-                 std::function<bool(fdds::DataReader*)> take) -> bool {
+                 std::function<bool(fdds::DataReader*, bool)> take) -> bool {
     type.register_type(participant);
     fdds::Topic* t = participant->create_topic(topic, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
     fdds::DataReader* r = t ? subscriber->create_datareader(t, readerQos(latched)) : nullptr;
@@ -369,13 +369,17 @@ int main(int argc, char** argv) {
       fdds::ConditionSeq active;
       waitset.wait(active, eprosima::fastrtps::Duration_t(0, 100'000'000));
       for (auto& s : subs) {
+        // Reading the statuses resets them: a writer that leaves (localize exits) or a second
+        // latched sample (a reload) must not keep the wait set triggered.
         fdds::SubscriptionMatchedStatus st;
-        if (!s.matched && s.reader->get_subscription_matched_status(st) == ReturnCode_t::RETCODE_OK &&
+        if (s.reader->get_subscription_matched_status(st) == ReturnCode_t::RETCODE_OK && !s.matched &&
             st.current_count > 0) {
           s.matched = true;
           Line((std::string("matched ") + s.name).c_str()).emit();
         }
-        while ((s.latched && s.received > 0) ? false : s.take(s.reader)) ++s.received;
+        // A latched topic is printed and counted once (its first sample); later ones are dropped.
+        for (bool first = !s.latched || s.received == 0; s.take(s.reader, first); first = !s.latched)
+          if (first) ++s.received;
       }
       if (complete(false)) {
         rc = 0;
