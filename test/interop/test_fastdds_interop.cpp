@@ -260,5 +260,23 @@ TEST(FastDdsInterop, ReceivesEveryPoseOfLocalize) {
             << ", last at t_ms=" << got.back().kv.at("t_ms") << "\n";
 }
 
+TEST(FastDdsInterop, ClientFailsWithoutPublisherAndOnBadArguments) {
+  test::TempDir tmp;
+  // Nobody publishes on this domain: exit 2 after the timeout, nothing received.
+  Child idle({FASTDDS_INTEROP_CLIENT, "--domain", std::to_string(test::testDomainId(15)), "--timeout", "1"},
+             tmp.path() / "idle");
+  EXPECT_EQ(idle.wait(20), 2) << idle.out() << idle.err();
+  EXPECT_NE(idle.out().find("map=0 cloud=0 octomap=0 map_info=0 exit=2"), std::string::npos) << idle.out();
+  EXPECT_EQ(idle.out().find("received"), std::string::npos) << idle.out();
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{FASTDDS_INTEROP_CLIENT, "--timeout", "1"},
+        {FASTDDS_INTEROP_CLIENT, "--domain", "233"},
+        {FASTDDS_INTEROP_CLIENT, "--domain", std::to_string(test::testDomainId(15)), "--topics", "map,nosuch",
+         "--timeout", "1"}}) {
+    Child c(bad, tmp.path() / "bad");
+    EXPECT_EQ(c.wait(20), 1) << bad.back() << c.err();
+  }
+}
+
 }  // namespace
 }  // namespace radarslam
