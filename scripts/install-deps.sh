@@ -10,6 +10,9 @@ packages=(
   mrpt-apps  # rawlog-edit: test_cli_mrpt_plugin reads our rawlogs with MRPT's own tool
   systemd dpkg-dev  # systemd-analyze verify and dpkg-shlibdeps: test/install/test_install.sh
   python3 python3-yaml  # scripts/bench.py (the bench_reduced test), scripts/parameters_doc.py
+  # test/interop: a Fast DDS (ROS 2's default DDS) client reads our Cyclone DDS programs; fastddsgen
+  # generates its type support at build time and runs on Java (not a declared dependency of it)
+  libfastrtps-dev fastddsgen default-jre-headless libssl-dev
 )
 missing=()
 for p in "${packages[@]}"; do
