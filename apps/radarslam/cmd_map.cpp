@@ -27,6 +27,7 @@
 #include <radarslam/eval/report.h>
 #include <radarslam/io/dataset.h>
 #include <radarslam/io/trajectory_files.h>
+#include <radarslam/map/keyframe_culling.h>
 #include <radarslam/map/map_exports.h>
 #include <radarslam/map/map_io.h>
 #include <radarslam/slam/loop_evaluation.h>
@@ -256,6 +257,10 @@ int runMap(int argc, char** argv) {
     eval_text = "  (no ground truth in this dataset: not evaluated)\n";
   }
 
+  // Map growth with area, not drive time: revisits' keyframes that an earlier pass covers are
+  // dropped before saving (map/keyframe_culling.h); the evaluation above saw the whole run.
+  const CullingReport culled = cullRedundantKeyframes(map, params.keyframe_culling);
+
   // Every run product goes into the temporary map directory: the swap into place is the last step,
   // so a failure anywhere (a too fine --grid-resolution, a full disk) leaves the previous map whole.
   std::ostringstream sum;
@@ -282,10 +287,12 @@ int runMap(int argc, char** argv) {
                   "  scans          %zu processed (%zu lost: constant-velocity prediction), %zu skipped\n",
                   done, st.lost_scans, scans.skipped());
     sum << buf;
-    std::snprintf(buf, sizeof buf,
-                  "  map            %zu keyframes, %zu map points, %zu edges -> %s (saved in %.0f ms)\n",
-                  map.keyframes.size(), map.points.size(), map.edges.size(), map_dir.string().c_str(),
-                  save_ms);
+    std::snprintf(
+        buf, sizeof buf,
+        "  map            %zu keyframes, %zu map points, %zu edges -> %s (saved in %.0f ms); %zu of %zu "
+        "keyframes dropped where an earlier pass covers the place\n",
+        map.keyframes.size(), map.points.size(), map.edges.size(), map_dir.string().c_str(), save_ms,
+        culled.keyframes_before - culled.keyframes_after, culled.keyframes_before);
     sum << buf;
     std::snprintf(buf, sizeof buf,
                   "  loops          %zu candidates verified: %zu accepted, %zu rejected by verification, %zu "

@@ -21,6 +21,11 @@ void loadParams(const YamlParams& yaml, SlamParams& p) {
   lm.get("prior_sigma_xy_m", p.local_mapping.prior_sigma_xy_m, Range::above(0, 1000));
   lm.get("prior_sigma_phi_rad", p.local_mapping.prior_sigma_phi_rad, Range::above(0, 10));
 
+  const YamlParams kc = slam.section("keyframe_culling");
+  kc.get("enabled", p.keyframe_culling.enabled);
+  kc.get("coverage_radius_m", p.keyframe_culling.coverage_radius_m, Range::above(0, 1000));
+  kc.get("min_path_gap_m", p.keyframe_culling.min_path_gap_m, Range::closed(0, 1000000.0));
+
   const YamlParams oe = slam.section("odometry_edges");
   oe.get("sigma_xy_base_m", p.odometry_edges.sigma_xy_base_m, Range::above(0, 100));
   oe.get("sigma_xy_per_m", p.odometry_edges.sigma_xy_per_m, Range::closed(0, 10));

@@ -8,6 +8,7 @@
 #include "radarslam/loop/loop_detector.h"
 #include "radarslam/loop/loop_verifier.h"
 #include "radarslam/loop/m2dp.h"
+#include "radarslam/map/keyframe_culling.h"
 #include "radarslam/radar/peak_cloud.h"
 
 namespace radarslam {
@@ -93,6 +94,8 @@ struct SlamParams {
   OdometryEdgeParams odometry_edges;
   LoopClosingParams loop_closing;
   PoseGraphParams pose_graph;
+  /// Applied by `radarslam map` before saving (map/keyframe_culling.h), not during the run.
+  KeyframeCullingParams keyframe_culling;
   /// 1: everything runs in the caller's thread (deterministic); >= 2: local mapping and loop
   /// closing run in their own threads, as in the paper.
   int threads = 3;  ///< valid [1, 64]
