@@ -15,6 +15,7 @@
 
 #include "radarslam/core/atomic_file.h"
 #include "radarslam/core/errors.h"
+#include "radarslam/map/layer_files.h"
 #include "radarslam/map/octomap_slab.h"
 #include "radarslam/map/sha256.h"
 
@@ -59,12 +60,43 @@ OccupancyGridMsg gridMessage(const OccupancyRaster& r, StampNs stamp) {
   g.height = static_cast<std::uint32_t>(r.height);
   g.origin.x = r.x_min;
   g.origin.y = r.y_min;
-  g.data.resize(r.p_occupied.size());
-  for (std::size_t i = 0; i < r.p_occupied.size(); ++i) {
-    const bool seen = r.observed.empty() ? r.p_occupied[i] != 0.5f : r.observed[i] != 0;
-    g.data[i] = seen ? static_cast<std::int8_t>(std::lround(100.0 * r.p_occupied[i])) : std::int8_t{-1};
-  }
+  g.data = occupancyCells(r);
   return g;
+}
+
+OccupancyGridMsg gridMessage(const fs::path& map_dir, const MapLayersManifest& layers, StampNs stamp) {
+  OccupancyGridMsg g;
+  g.header = mapHeader(stamp);
+  g.map_load_time = toTimeMsg(stamp);
+  g.resolution = static_cast<float>(layers.params.grid.resolution_m);
+  g.width = layers.grid_width;
+  g.height = layers.grid_height;
+  g.origin.x = layers.grid_origin_x;
+  g.origin.y = layers.grid_origin_y;
+  g.data = readGridLayer(map_dir, layers);
+  return g;
+}
+
+PointCloud2Msg cloudMessage(const fs::path& map_dir, const MapLayersManifest& layers, StampNs stamp) {
+  PointCloud2Msg m;
+  m.header = mapHeader(stamp);
+  m.fields = {{"x", 0}, {"y", 4}, {"z", 8}, {"intensity", 12}};
+  m.point_step = 16;
+  std::uint64_t n = 0;
+  m.data = readCloudLayer(map_dir, layers, n);
+  m.width = static_cast<std::uint32_t>(n);
+  m.row_step = m.width * m.point_step;
+  return m;
+}
+
+OctomapMsg octomapMessage(const fs::path& map_dir, const MapLayersManifest& layers, StampNs stamp) {
+  OctomapMsg m;
+  m.header = mapHeader(stamp);
+  m.binary = true;
+  m.id = "OcTree";
+  m.resolution = layers.params.octomap.resolution_m;
+  m.data = readOctomapLayer(map_dir, layers);
+  return m;
 }
 
 PointCloud2Msg cloudMessage(const KeyframeMap& map, StampNs stamp) {
