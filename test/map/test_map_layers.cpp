@@ -3,6 +3,9 @@
 // layer files rejected naming the file, older maps without layers still loading.
 #include <gtest/gtest.h>
 
+#include <octomap/OcTree.h>
+
+#include <sstream>
 #include <string>
 
 #include "old_format_map.h"
@@ -156,6 +159,20 @@ TEST(MapLayers, Format1MapStillLoadsAndHasNoLayers) {
   EXPECT_EQ(back.meta.format_version, 1u);
   EXPECT_EQ(back.keyframes.size(), map.keyframes.size());
   EXPECT_EQ(back.edges, map.edges);
+}
+
+TEST(MapLayers, OctreeStreamWalkCountsTheNodesOctomapReads) {
+  const OccupancyRaster raster = buildOccupancy(test::syntheticMap(6, 300));
+  const OctomapSlab slab = encodeOctomapSlab(raster);
+  octomap::OcTree tree(raster.resolution);
+  std::istringstream in(slab.binary_data, std::ios::binary);
+  ASSERT_TRUE(tree.readBinaryData(in));
+  EXPECT_EQ(octreeBinaryNodeCount(slab.binary_data), std::optional<std::size_t>(tree.size()));
+  EXPECT_EQ(octreeBinaryNodeCount(slab.binary_data), std::optional<std::size_t>(slab.nodes));
+  EXPECT_FALSE(octreeBinaryNodeCount(slab.binary_data.substr(0, slab.binary_data.size() - 1)));
+  EXPECT_FALSE(octreeBinaryNodeCount(slab.binary_data + "x"));
+  EXPECT_FALSE(octreeBinaryNodeCount(std::string(40, '\xff')));  // inner nodes all the way down
+  EXPECT_EQ(octreeBinaryNodeCount(""), std::optional<std::size_t>(0));
 }
 
 TEST(MapLayers, SaveWithoutLayersListsNone) {

@@ -12,6 +12,7 @@
 
 #include "radarslam/core/errors.h"
 #include "radarslam/core/input_file.h"
+#include "radarslam/map/octomap_slab.h"
 #include "radarslam/map/sha256.h"
 
 namespace radarslam {
@@ -215,9 +216,11 @@ std::vector<std::int8_t> readOctomapLayer(const fs::path& map_dir, const MapLaye
   if (line.rfind("# Octomap OcTree binary file", 0) != 0)
     throw InputError(file, "not an OctoMap binary file (first line '" + line.substr(0, 64) + "')");
   bool id_ok = false, res_ok = false;
+  std::string size_text;
   while (std::getline(ss, line)) {
     const auto w = splitWords(line);
     if (w.size() == 2 && w[0] == "id") id_ok = w[1] == "OcTree";
+    if (w.size() == 2 && w[0] == "size") size_text = w[1];
     if (w.size() == 2 && w[0] == "res") {
       const double r = std::atof(w[1].c_str());
       res_ok = r > 0 && std::abs(r - layers.params.octomap.resolution_m) <= 1e-5 * r;
@@ -225,6 +228,10 @@ std::vector<std::int8_t> readOctomapLayer(const fs::path& map_dir, const MapLaye
   }
   if (!id_ok || !res_ok)
     throw InputError(file, "OctoMap header: expected id OcTree and the resolution the manifest gives");
+  const auto nodes = octreeBinaryNodeCount({reinterpret_cast<const char*>(data.data()), data.size()});
+  if (!nodes || std::to_string(*nodes) != size_text)
+    throw InputError(
+        file, "OctoMap data is malformed or does not hold the " + size_text + " nodes its header says");
   return data;
 }
 
