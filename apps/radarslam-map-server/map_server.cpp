@@ -128,7 +128,7 @@ void MapServer::load() {
                   map_name_.c_str(), revision_, info.keyframes, source, summary.c_str(), secs);
 }
 
-// The grid first (what a late joiner needs soonest) with MapInfo, which names its checksum; then
+// The grid first (what a late joiner needs soonest), then MapInfo, which names its checksum; then
 // the other layers, each published as soon as it is read and freed before the next one. All
 // carry the same header stamp, so a client knows which publication each belongs to.
 void MapServer::publishSaved(const MapManifestSummary& manifest, dds::MapInfoMsg& info,
@@ -137,9 +137,9 @@ void MapServer::publishSaved(const MapManifestSummary& manifest, dds::MapInfoMsg
   const StampNs now = dds::fromTimeMsg(info.header.stamp);
   if (grid_pub_) {
     const dds::OccupancyGridMsg grid = dds::gridMessage(params_.map_dir, layers, now);
-    info.grid_sha256 = dds::gridSha256(grid);
+    grid_pub_->publish(grid);  // before hashing its cells: a late joiner gets it sooner
     summary += "grid " + std::to_string(grid.width) + "x" + std::to_string(grid.height) + sinceStart() + ", ";
-    grid_pub_->publish(grid);
+    info.grid_sha256 = dds::gridSha256(grid);
   }
   info_pub_->publish(info);
   revision_ = info.revision;
@@ -165,9 +165,9 @@ void MapServer::publishBuilt(const KeyframeMap& map, dds::MapInfoMsg& info, std:
   if (grid_pub_ || (octomap_pub_ && share_raster)) raster = buildOccupancy(map, params_.grid);
   if (grid_pub_) {
     const dds::OccupancyGridMsg grid = dds::gridMessage(*raster, now);
-    info.grid_sha256 = dds::gridSha256(grid);
+    grid_pub_->publish(grid);  // before hashing its cells: a late joiner gets it sooner
     summary += "grid " + std::to_string(grid.width) + "x" + std::to_string(grid.height) + sinceStart() + ", ";
-    grid_pub_->publish(grid);
+    info.grid_sha256 = dds::gridSha256(grid);
   }
   info_pub_->publish(info);
   revision_ = info.revision;
