@@ -139,7 +139,8 @@ void MapServer::publishSaved(const MapManifestSummary& manifest, dds::MapInfoMsg
     const dds::OccupancyGridMsg grid = dds::gridMessage(params_.map_dir, layers, now);
     grid_pub_->publish(grid);  // before hashing its cells: a late joiner gets it sooner
     summary += "grid " + std::to_string(grid.width) + "x" + std::to_string(grid.height) + sinceStart() + ", ";
-    info.grid_sha256 = dds::gridSha256(grid);
+    // The manifest's hash of the cells (from the file just checked against the manifest), if any.
+    info.grid_sha256 = layers.grid_cells_sha256.empty() ? dds::gridSha256(grid) : layers.grid_cells_sha256;
   }
   info_pub_->publish(info);
   revision_ = info.revision;

@@ -65,6 +65,9 @@ TEST(MapLayers, SaveWritesEveryLayerWithItsChecksumAndParameters) {
   EXPECT_EQ(layers.grid_height, static_cast<std::uint32_t>(raster.height));
   EXPECT_EQ(layers.grid_origin_x, raster.x_min);
   EXPECT_EQ(layers.grid_origin_y, raster.y_min);
+  const auto cells = occupancyCells(raster);
+  EXPECT_EQ(layers.grid_cells_sha256,
+            sha256Hex({reinterpret_cast<const unsigned char*>(cells.data()), cells.size()}));
   // The keyframes are still there and load as before.
   const KeyframeMap back = loadMap(tmp / "m");
   EXPECT_EQ(back.keyframes.size(), map.keyframes.size());

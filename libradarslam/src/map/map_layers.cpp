@@ -101,6 +101,7 @@ MapLayersManifest writeMapLayers(const KeyframeMap& map, const fs::path& map_dir
   m.grid_origin_y = raster->y_min;
   {
     const std::vector<std::int8_t> cells = occupancyCells(*raster);
+    m.grid_cells_sha256 = sha256Hex({reinterpret_cast<const unsigned char*>(cells.data()), cells.size()});
     const std::string pgm = gridPgm(cells, m.grid_width, m.grid_height);
     writeSynced(dir / kGridLayerFile, pgm);
     m.files.push_back(entry("grid", prefix + kGridLayerFile, pgm));
@@ -160,6 +161,7 @@ std::string layersManifestText(const MapLayersManifest& l) {
     << "  grid_height: " << l.grid_height << "\n"
     << "  grid_origin_x: " << fmtDouble(l.grid_origin_x) << "\n"
     << "  grid_origin_y: " << fmtDouble(l.grid_origin_y) << "\n"
+    << "  grid_cells_sha256: " << mapcodec::yamlQuoted(l.grid_cells_sha256) << "\n"
     << "  cloud_points: " << l.cloud_points << "\n"
     << "  files:\n";
   for (const auto& f : l.files)
@@ -186,6 +188,11 @@ std::optional<MapLayersManifest> parseLayersManifest(const YamlParams& manifest,
   y.get("grid_origin_y", l.grid_origin_y);
   if (!std::isfinite(l.grid_origin_x) || !std::isfinite(l.grid_origin_y))
     throw InputError(origin, "layers: grid origin is not finite");
+  y.get("grid_cells_sha256", l.grid_cells_sha256);
+  if (!l.grid_cells_sha256.empty() &&
+      (l.grid_cells_sha256.size() != 64 ||
+       l.grid_cells_sha256.find_first_not_of("0123456789abcdef") != std::string::npos))
+    throw InputError(origin, "layers.grid_cells_sha256: expected 64 lower-case hex digits");
   std::string points = "0";
   y.get("cloud_points", points);
   const auto n = parseCount(points);

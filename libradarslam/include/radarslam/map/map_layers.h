@@ -43,6 +43,9 @@ struct MapLayersManifest {
   MapLayerParams params;
   std::uint32_t grid_width = 0, grid_height = 0;
   double grid_origin_x = 0, grid_origin_y = 0;
+  /// SHA-256 of the grid's cells (the OccupancyGrid data, = MapInfo.grid_sha256), so a server need
+  /// not hash them again; empty if the manifest has none.
+  std::string grid_cells_sha256;
   std::uint64_t cloud_points = 0;
   std::vector<LayerFileEntry> files;  ///< grid, grid_yaml, cloud, octomap (in this order)
   const LayerFileEntry& file(const std::string& key) const;
