@@ -3,6 +3,7 @@
 # layer, and the peak RSS of both (docs/dds.md, "Measurements"). The client starts together with
 # the server (a late joiner of the first publication) and logs the UNIX time each layer arrived.
 #   [LAYERS=grid,cloud,octomap] scripts/map_server_latency.sh MAP [DOMAIN] [BUILD_DIR]
+# DDS_CONFIG=FILE: both programs use this Cyclone XML instead of the built-in loopback one.
 # LAYERS: what the client waits for (one layer: its arrival without the client writing the others
 # first). Loopback only (the programs' built-in configuration). Prints one summary line.
 set -euo pipefail
@@ -12,12 +13,14 @@ build=${3:-build}
 server=$build/apps/radarslam-map-server/radarslam-map-server
 client=$build/apps/radarslam-map-client/radarslam-map-client
 work=$(mktemp -d)
+config=()
+[ -n "${DDS_CONFIG:-}" ] && config=(--config "$DDS_CONFIG")
 trap 'rm -rf "$work"' EXIT
 
 start=$(date +%s.%N)
-/usr/bin/time -v "$server" --map "$map" --domain "$domain" 2> "$work/server.err" &
+/usr/bin/time -v "$server" --map "$map" --domain "$domain" "${config[@]}" 2> "$work/server.err" &
 server_pid=$!
-/usr/bin/time -v "$client" -o "$work/got" --domain "$domain" --timeout 120 --layers "${LAYERS:-grid,cloud,octomap}" > "$work/client.out" 2> "$work/client.err" || {
+/usr/bin/time -v "$client" -o "$work/got" --domain "$domain" "${config[@]}" --timeout 120 --layers "${LAYERS:-grid,cloud,octomap}" > "$work/client.out" 2> "$work/client.err" || {
   cat "$work/client.err" >&2
   exit 1
 }
