@@ -186,13 +186,20 @@ std::vector<fs::path> writeGridFiles(const OccupancyGridMsg& grid, const fs::pat
     }
   }
   std::vector<fs::path> files;
-  for (const char* ext : {".pgm", ".png"}) {
-    const fs::path path = dir / (stem + ext);
-    std::vector<unsigned char> buf;
-    if (!cv::imencode(ext, img, buf)) throw InputError(path.string(), "cannot encode the grid image");
-    writeBytesAtomically(path, buf);
-    files.push_back(path);
-  }
+  // PGM streamed from the image (no second copy of the grid in memory; same bytes as OpenCV's P5).
+  const fs::path pgm = dir / (stem + ".pgm");
+  writeFileAtomically(pgm, [&](const fs::path& tmp) {
+    std::ofstream os(tmp, std::ios::binary);
+    os << "P5\n" << w << ' ' << h << "\n255\n";
+    for (int row = 0; row < h; ++row) os.write(img.ptr<char>(row), w);
+    if (!os.flush()) throw InputError(pgm.string(), "cannot write the grid image");
+  });
+  files.push_back(pgm);
+  const fs::path png = dir / (stem + ".png");
+  std::vector<unsigned char> buf;
+  if (!cv::imencode(".png", img, buf)) throw InputError(png.string(), "cannot encode the grid image");
+  writeBytesAtomically(png, buf);
+  files.push_back(png);
   // Rotation of the origin: yaw of the quaternion (our grids are axis-aligned: 0).
   const double yaw =
       std::atan2(2.0 * (grid.origin.qw * grid.origin.qz + grid.origin.qx * grid.origin.qy),
