@@ -50,12 +50,17 @@ SECTIONS = [
     ("sim/radar_model.cpp", "loadGeometry", "y", "RadarGeometry", ["radar"]),
     ("sim/radar_model.cpp", "loadPhysics", "y", "RadarPhysics", ["physics"]),
     ("eval/evaluate.cpp", None, "section", "EvalParams", ["(library: EvalParams)"]),
+    ("map/map_layers.cpp", None, "yaml", "MapLayerParams", ["map_layers"]),
     ("map/map_from_trajectory.cpp", None, "yaml", "KeyframeInsertionParams",
      ["(library: KeyframeInsertionParams)"]),
 ]
 
 # Nested parameter structs a loader fills through a member: (struct, member) -> member's struct.
-NESTED = {("LoopVerifierParams", "information"): "AlignmentInformationParams"}
+NESTED = {("LoopVerifierParams", "information"): "AlignmentInformationParams",
+          ("MapLayerParams", "grid"): "GridExportParams", ("MapLayerParams", "octomap"): "OctomapExportParams"}
+
+# Enum parameters read as strings: (struct, key) -> default shown.
+ENUM_DEFAULTS = {("MapLayerParams", "octomap_fill"): '"grid_columns"'}
 
 FILES = [
     ("Odometry and SLAM: config/<sensor>.yaml (`radarslam odometry`, `map`, `localize`)",
@@ -134,6 +139,7 @@ def main():
                 default, comment = defaults["KittiParams"].get(name, ("?", ""))
             else:
                 default, comment = fields.get(name, ("?", ""))
+            default = ENUM_DEFAULTS.get((struct, key), default)
             if default.startswith("static_cast"):
                 default = "?"
             comment = re.sub(r";?\s*valid .*$", "", comment).strip()  # the range is its own column
@@ -163,6 +169,9 @@ def main():
         "RouteParams": "`stop_max_s` >= `stop_min_s`.",
         "KeypointParams": "`detector` is one of orb, akaze, brisk, fast_orb.",
         "OutlierParams": "`consistency` is `distance` or `displacement`.",
+        "MapLayerParams": "The layers saved with a map (`radarslam map`, `map-synth --config`, `map-layers "
+                          "--config`; maps/README.md). `octomap_fill` is `grid_columns` (default: the grid's "
+                          "cells as a one-voxel slab) or `point_rays` (slow).",
     }
     for title, _ in FILES:
         if not by_file[title]:

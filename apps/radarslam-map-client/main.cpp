@@ -1,6 +1,7 @@
 // radarslam-map-client: an example subscriber of radarslam-map-server. Waits for the latched map
-// layers and MapInfo, checks that they belong together (same header stamp; SHA-256 of the grid
-// equals MapInfo.grid_sha256), writes them atomically as files and exits:
+// layers and MapInfo, writes each layer to its files (atomically) as soon as it arrives and frees
+// it, and exits once the files of every layer belong to the MapInfo received (same header stamp;
+// SHA-256 of the grid equals MapInfo.grid_sha256):
 //   OUT/grid.pgm, grid.png, grid.yaml (ROS map_server), OUT/cloud.pcd, OUT/map.bt, OUT/map_info.yaml
 // Exit status: 0 received and written, 1 bad input, 2 timed out.
 #include <chrono>
@@ -36,6 +37,28 @@ bool takeLatest(dds::Subscription<Msg>* sub, std::optional<Msg>& latest) {
     got = true;
   }
   return got;
+}
+
+// What was written for a layer: the publication (header stamp) it came from and a description.
+struct Written {
+  std::optional<dds::TimeMsg> stamp;
+  std::string what, grid_sha;
+};
+
+// Takes every sample that arrived, writes each to its files at once and frees it: the client
+// never holds more than one layer.
+template <class Msg, class WriteFn>
+void takeAndWrite(dds::Subscription<Msg>* sub, const char* name, Written& written, WriteFn&& write) {
+  if (!sub) return;
+  while (auto m = sub->take(std::chrono::milliseconds(0))) {
+    // UNIX time of arrival, to measure from another process's start (docs/dds.md, measurements).
+    const double unix_s =
+        std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+    written.what = write(*m);
+    written.stamp = m->header.stamp;
+    logger().logFmt(mrpt::system::LVL_INFO, "%s received at UNIX time %.3f: %s, written", name, unix_s,
+                    written.what.c_str());
+  }
 }
 
 int run(int argc, char** argv) {
@@ -98,28 +121,37 @@ int run(int argc, char** argv) {
 
   logger().logFmt(mrpt::system::LVL_INFO, "waiting for the map on DDS domain %u (layers %s, timeout %.1f s)",
                   domain.getValue(), layers.getValue().c_str(), timeout.getValue());
+  std::filesystem::create_directories(out_dir);
   std::optional<dds::MapInfoMsg> info;
-  std::optional<dds::OccupancyGridMsg> grid;
-  std::optional<dds::PointCloud2Msg> cloud;
-  std::optional<dds::OctomapMsg> octo;
-  std::string grid_sha;
+  Written grid, cloud, octo;
   std::string waiting;
   for (;;) {
     takeLatest(&info_sub, info);
-    if (takeLatest(grid_sub.get(), grid)) grid_sha = dds::gridSha256(*grid);
-    takeLatest(cloud_sub.get(), cloud);
-    takeLatest(octo_sub.get(), octo);
+    // Each layer is written as it arrives (atomically, file by file) and freed; one that belongs
+    // to another publication than MapInfo is overwritten when the matching one arrives.
+    takeAndWrite(grid_sub.get(), "grid", grid, [&](const dds::OccupancyGridMsg& m) {
+      grid.grid_sha = dds::gridSha256(m);
+      dds::writeGridFiles(m, out_dir, "grid");
+      return std::to_string(m.width) + "x" + std::to_string(m.height);
+    });
+    takeAndWrite(cloud_sub.get(), "cloud", cloud, [&](const dds::PointCloud2Msg& m) {
+      dds::writePcdFile(m, out_dir / "cloud.pcd");
+      return std::to_string(m.width) + " points";
+    });
+    takeAndWrite(octo_sub.get(), "octomap", octo, [&](const dds::OctomapMsg& m) {
+      dds::writeOctomapFile(m, out_dir / "map.bt");
+      return std::to_string(m.data.size()) + " bytes";
+    });
     // Complete = every wanted layer from the same publication as MapInfo (same header stamp).
     waiting.clear();
     if (!info)
       waiting += " map_info";
     else if (!expect.getValue().empty() && info->grid_sha256 != expect.getValue())
       waiting += " map_info(expected grid)";
-    if (want_grid &&
-        (!grid || !info || grid_sha != info->grid_sha256 || grid->header.stamp != info->header.stamp))
-      waiting += " grid";
-    if (want_cloud && (!cloud || !info || cloud->header.stamp != info->header.stamp)) waiting += " cloud";
-    if (want_octomap && (!octo || !info || octo->header.stamp != info->header.stamp)) waiting += " octomap";
+    auto current = [&](const Written& w) { return info && w.stamp && *w.stamp == info->header.stamp; };
+    if (want_grid && (!current(grid) || grid.grid_sha != info->grid_sha256)) waiting += " grid";
+    if (want_cloud && !current(cloud)) waiting += " cloud";
+    if (want_octomap && !current(octo)) waiting += " octomap";
     if (waiting.empty()) break;
     const auto now = Clock::now();
     if (now >= deadline)
@@ -129,10 +161,6 @@ int run(int argc, char** argv) {
   }
   const double received_s = std::chrono::duration<double>(Clock::now() - t0).count();
 
-  std::filesystem::create_directories(out_dir);
-  if (grid) dds::writeGridFiles(*grid, out_dir, "grid");
-  if (cloud) dds::writePcdFile(*cloud, out_dir / "cloud.pcd");
-  if (octo) dds::writeOctomapFile(*octo, out_dir / "map.bt");
   char yaml[1024];
   std::snprintf(yaml, sizeof yaml,
                 "map_name: \"%s\"\nrevision: %u\nformat_version: %u\nkeyframes: %u\ncreated_ns: %lld\n"
@@ -141,11 +169,10 @@ int run(int argc, char** argv) {
                 static_cast<long long>(dds::fromTimeMsg(info->created)), info->grid_sha256.c_str(),
                 info->manifest_sha256.c_str());
   writeTextAtomically(out_dir / "map_info.yaml", yaml);
+  auto what = [](const Written& w) { return w.stamp ? w.what : std::string("-"); };
   std::printf("received map '%s' revision %u in %.3f s: grid %s, cloud %s, octomap %s; grid sha256 %s\n",
-              info->map_name.c_str(), info->revision, received_s,
-              grid ? (std::to_string(grid->width) + "x" + std::to_string(grid->height)).c_str() : "-",
-              cloud ? (std::to_string(cloud->width) + " points").c_str() : "-",
-              octo ? (std::to_string(octo->data.size()) + " bytes").c_str() : "-", info->grid_sha256.c_str());
+              info->map_name.c_str(), info->revision, received_s, what(grid).c_str(), what(cloud).c_str(),
+              what(octo).c_str(), info->grid_sha256.c_str());
   return 0;
 }
 

@@ -39,7 +39,11 @@ int run(int argc, char** argv) {
   TCLAP::ValueArg<unsigned> domain("", "domain", "DDS domain id (ROS_DOMAIN_ID), 0..232", false, 0, "N", tc);
   TCLAP::ValueArg<std::string> layers("", "layers", "Layers to publish, comma-separated", false,
                                       "grid,cloud,octomap", "LIST", tc);
-  TCLAP::ValueArg<double> resolution("", "resolution", "Grid and OctoMap cell size [m]", false, 0.2, "M", tc);
+  TCLAP::ValueArg<double> resolution(
+      "", "resolution",
+      "Grid and OctoMap cell size [m] (default: the saved layers', 0.2 for a "
+      "map without saved layers; another value builds them from the keyframes)",
+      false, 0.2, "M", tc);
   TCLAP::ValueArg<double> poll("", "poll", "Seconds between checks of the map's manifest", false, 1.0, "S",
                                tc);
   cmd.parse(argc, argv);
@@ -51,6 +55,7 @@ int run(int argc, char** argv) {
   params.layers = map_server::parseLayers(layers.getValue());
   params.grid.resolution_m = resolution.getValue();
   params.octomap.resolution_m = resolution.getValue();
+  params.resolution_set = resolution.isSet();
   if (!std::filesystem::is_directory(params.map_dir))
     throw InputError(params.map_dir.string(), "no such map directory");
   const std::string xml = config.isSet() ? dds::readConfigFile(config.getValue()) : dds::kLoopbackConfigXml;

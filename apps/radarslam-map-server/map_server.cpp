@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <chrono>
+#include <cstdio>
 #include <exception>
 #include <fstream>
 #include <sstream>
@@ -49,7 +50,8 @@ std::optional<std::string> manifestSha256(const fs::path& map_dir) {
 std::string mapFingerprint(const fs::path& map_dir) {
   std::ostringstream fp;
   fp << manifestSha256(map_dir).value_or("-");
-  for (const char* name : {"manifest.yaml", "parameters.yaml", "keyframes.bin", "points.bin", "graph.bin"}) {
+  for (const char* name : {"manifest.yaml", "parameters.yaml", "keyframes.bin", "points.bin", "graph.bin",
+                           "layers/grid.pgm", "layers/cloud.pcd", "layers/map.bt"}) {
     struct stat st {};
     if (::stat((map_dir / name).c_str(), &st) != 0)
       fp << " -";
@@ -74,57 +76,120 @@ MapServer::MapServer(dds::Domain& domain, ServerParams params) : domain_(domain)
 }
 
 void MapServer::load() {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = load_start_ = std::chrono::steady_clock::now();
   const auto before = manifestSha256(params_.map_dir);
-  const KeyframeMap map = loadMap(params_.map_dir);  // throws InputError naming the file
-  const auto after = manifestSha256(params_.map_dir);
-  if (!before || before != after)
-    throw InputError(params_.map_dir.string(), "the map changed while it was being read");
+  const MapManifestSummary manifest = readMapManifest(params_.map_dir);  // throws naming the file
   const StampNs now = std::chrono::duration_cast<std::chrono::nanoseconds>(
                           std::chrono::system_clock::now().time_since_epoch())
                           .count();
   dds::MapInfoMsg info;
   info.header = {dds::toTimeMsg(now), dds::kMapFrame};
   info.map_name = map_name_;
-  info.format_version = map.meta.format_version;
-  info.keyframes = static_cast<std::uint32_t>(map.keyframes.size());
   info.revision = revision_ + 1;
-  info.manifest_sha256 = *after;
-  info.created = dds::toTimeMsg(map.meta.created_ns);
+  info.manifest_sha256 = before.value_or("");
 
-  // The grid first (what a late joiner needs soonest) with MapInfo, which names its checksum; then
-  // the other layers, each published as soon as it is built. All carry the same header stamp, so
-  // a client knows which publication each belongs to. The OctoMap (grid_columns fill) reuses the
-  // grid's occupancy raster when the resolutions agree.
+  const auto& saved = manifest.layers;
+  const bool other_resolution = saved && params_.resolution_set &&
+                                (saved->params.grid.resolution_m != params_.grid.resolution_m ||
+                                 saved->params.octomap.resolution_m != params_.octomap.resolution_m);
   std::string summary;
+  const char* source = "saved layers";
+  if (saved && !other_resolution) {
+    info.format_version = manifest.format_version;
+    info.keyframes = static_cast<std::uint32_t>(manifest.keyframes);
+    info.created = dds::toTimeMsg(manifest.created_ns);
+    publishSaved(manifest, info, summary);
+  } else {
+    if (other_resolution)
+      logger().logFmt(
+          LVL_INFO, "--resolution %g differs from the saved layers' (%g m): building them from the keyframes",
+          params_.grid.resolution_m, saved->params.grid.resolution_m);
+    else
+      logger().logFmt(LVL_WARN,
+                      "map '%s' (format version %u) has no saved layers: building them from the keyframes "
+                      "at every load; `radarslam map-layers %s` saves them with the map",
+                      map_name_.c_str(), manifest.format_version, params_.map_dir.string().c_str());
+    source = "built from the keyframes";
+    const KeyframeMap map = loadMap(params_.map_dir);  // throws InputError naming the file
+    info.format_version = map.meta.format_version;
+    info.keyframes = static_cast<std::uint32_t>(map.keyframes.size());
+    info.created = dds::toTimeMsg(map.meta.created_ns);
+    publishBuilt(map, info, summary);
+  }
+  // Every file was checked against the manifest read first; a manifest that changed meanwhile
+  // means a new map is being swapped in: the next poll publishes it.
+  const auto after = manifestSha256(params_.map_dir);
+  if (!before || before != after)
+    throw InputError(params_.map_dir.string(), "the map changed while it was being read");
+  loaded_manifest_sha_ = *after;
+  failed_fingerprint_.clear();
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  logger().logFmt(LVL_INFO, "published map '%s' revision %u (%u keyframes, %s): %sin %.2f s",
+                  map_name_.c_str(), revision_, info.keyframes, source, summary.c_str(), secs);
+}
+
+// The grid first (what a late joiner needs soonest), then MapInfo, which names its checksum; then
+// the other layers, each published as soon as it is read and freed before the next one. All
+// carry the same header stamp, so a client knows which publication each belongs to.
+void MapServer::publishSaved(const MapManifestSummary& manifest, dds::MapInfoMsg& info,
+                             std::string& summary) {
+  const MapLayersManifest& layers = *manifest.layers;
+  const StampNs now = dds::fromTimeMsg(info.header.stamp);
+  if (grid_pub_) {
+    const dds::OccupancyGridMsg grid = dds::gridMessage(params_.map_dir, layers, now);
+    grid_pub_->publish(grid);  // before hashing its cells: a late joiner gets it sooner
+    summary += "grid " + std::to_string(grid.width) + "x" + std::to_string(grid.height) + sinceStart() + ", ";
+    // The manifest's hash of the cells (from the file just checked against the manifest), if any.
+    info.grid_sha256 = layers.grid_cells_sha256.empty() ? dds::gridSha256(grid) : layers.grid_cells_sha256;
+  }
+  info_pub_->publish(info);
+  revision_ = info.revision;
+  if (cloud_pub_) {
+    const dds::PointCloud2Msg cloud = dds::cloudMessage(params_.map_dir, layers, now);
+    summary += "cloud " + std::to_string(cloud.width) + " points" + sinceStart() + ", ";
+    cloud_pub_->publish(cloud);
+  }
+  if (octomap_pub_) {
+    const dds::OctomapMsg octo = dds::octomapMessage(params_.map_dir, layers, now);
+    summary += "octomap " + std::to_string(octo.data.size()) + " bytes" + sinceStart() + ", ";
+    octomap_pub_->publish(octo);
+  }
+}
+
+// An older map: the layers are built from the keyframes. The OctoMap (grid_columns fill) reuses
+// the grid's occupancy raster when the resolutions agree.
+void MapServer::publishBuilt(const KeyframeMap& map, dds::MapInfoMsg& info, std::string& summary) {
+  const StampNs now = dds::fromTimeMsg(info.header.stamp);
   std::optional<OccupancyRaster> raster;
   const bool share_raster = params_.octomap.fill == OctomapExportParams::Fill::grid_columns &&
                             params_.octomap.resolution_m == params_.grid.resolution_m;
   if (grid_pub_ || (octomap_pub_ && share_raster)) raster = buildOccupancy(map, params_.grid);
   if (grid_pub_) {
     const dds::OccupancyGridMsg grid = dds::gridMessage(*raster, now);
+    grid_pub_->publish(grid);  // before hashing its cells: a late joiner gets it sooner
+    summary += "grid " + std::to_string(grid.width) + "x" + std::to_string(grid.height) + sinceStart() + ", ";
     info.grid_sha256 = dds::gridSha256(grid);
-    summary += "grid " + std::to_string(grid.width) + "x" + std::to_string(grid.height) + ", ";
-    grid_pub_->publish(grid);
   }
   info_pub_->publish(info);
+  revision_ = info.revision;
   if (cloud_pub_) {
     const dds::PointCloud2Msg cloud = dds::cloudMessage(map, now);
-    summary += "cloud " + std::to_string(cloud.width) + " points, ";
+    summary += "cloud " + std::to_string(cloud.width) + " points" + sinceStart() + ", ";
     cloud_pub_->publish(cloud);
   }
   if (octomap_pub_) {
     const dds::OctomapMsg octo =
         share_raster ? dds::octomapMessage(*raster, now) : dds::octomapMessage(map, params_.octomap, now);
-    summary += "octomap " + std::to_string(octo.data.size()) + " bytes, ";
+    summary += "octomap " + std::to_string(octo.data.size()) + " bytes" + sinceStart() + ", ";
     octomap_pub_->publish(octo);
   }
-  revision_ = info.revision;
-  loaded_manifest_sha_ = *after;
-  failed_fingerprint_.clear();
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  logger().logFmt(LVL_INFO, "published map '%s' revision %u (%u keyframes): %sin %.2f s", map_name_.c_str(),
-                  revision_, info.keyframes, summary.c_str(), secs);
+}
+
+std::string MapServer::sinceStart() const {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, " (%.2f s)",
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start_).count());
+  return buf;
 }
 
 bool MapServer::reloadIfChanged() {

@@ -1,13 +1,16 @@
 #pragma once
 // The map server's state: the map directory it serves, the latched DDS publishers, and the
 // manifest fingerprint that tells when saveMap has swapped in a new map.
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include <radarslam/dds/domain.h>
+#include <radarslam/dds/messages.h>
 #include <radarslam/map/map_exports.h>
+#include <radarslam/map/map_io.h>
 
 namespace radarslam::map_server {
 
@@ -20,16 +23,23 @@ Layers parseLayers(const std::string& text);
 struct ServerParams {
   std::filesystem::path map_dir;
   Layers layers;
+  /// Used only to build the layers of a map that has none saved (format 1, or saved without
+  /// layers), or when `resolution_set` asks for another resolution than the saved layers'.
   GridExportParams grid;
   OctomapExportParams octomap;
+  bool resolution_set = false;  ///< --resolution given: grid.resolution_m = octomap.resolution_m
 };
 
 class MapServer {
  public:
   MapServer(dds::Domain& domain, ServerParams params);
 
-  /// Loads the map and publishes every layer and MapInfo. Throws InputError if the map cannot be
-  /// loaded (the previously published map, if any, stays published).
+  /// Publishes the map's layers and MapInfo: the grid and MapInfo first, then each other layer as
+  /// soon as it is read. A map with saved layers (map/map_layers.h) is served from the layer
+  /// files alone (checked against the manifest; the keyframes are not loaded); an older map's
+  /// layers are built from its keyframes (with a warning). Throws InputError naming the file if
+  /// the map or a layer file is bad: nothing is published if the manifest or the grid is bad;
+  /// layers published before a later one failed stay published.
   void load();
   /// Reloads if the manifest changed since the last load (checked by content hash). Returns true
   /// if a new map was published. A map that fails to load is reported once (WARN) and the last
@@ -41,6 +51,10 @@ class MapServer {
   dds::Domain& domain_;
   ServerParams params_;
   std::string map_name_;
+  void publishSaved(const MapManifestSummary& manifest, dds::MapInfoMsg& info, std::string& summary);
+  void publishBuilt(const KeyframeMap& map, dds::MapInfoMsg& info, std::string& summary);
+  std::string sinceStart() const;  // " (1.23 s)": time since load() started, for the summary line
+  std::chrono::steady_clock::time_point load_start_;
   std::unique_ptr<dds::Publisher<dds::OccupancyGridMsg>> grid_pub_;
   std::unique_ptr<dds::Publisher<dds::PointCloud2Msg>> cloud_pub_;
   std::unique_ptr<dds::Publisher<dds::OctomapMsg>> octomap_pub_;

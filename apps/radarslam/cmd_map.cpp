@@ -313,11 +313,11 @@ int runMap(int argc, char** argv) {
     std::snprintf(buf, sizeof buf, "  memory         peak RSS %.0f MiB\n", peakRssMiB());
     sum << buf;
     sum << "  outputs        " << (map_dir / "trajectory.tum").string()
-        << ", odometry.tum, grid.png, loops.csv\n";
+        << ", odometry.tum, grid.png, loops.csv, layers/ (grid, cloud, OctoMap for the map server)\n";
     sum << eval_text;
     writeTextAtomically(tmp / "summary.txt", sum.str());
   };
-  saveMap(map, map_dir, hooks);
+  saveMap(map, map_dir, hooks, params.map_layers);
   std::cout << sum.str();
   return 0;
 }

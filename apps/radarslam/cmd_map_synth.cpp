@@ -17,6 +17,7 @@
 
 #include "cli_common.h"
 #include "command.h"
+#include "layer_config.h"
 
 namespace radarslam::cli {
 namespace {
@@ -40,7 +41,13 @@ int runMapSynth(int argc, char** argv) {
                              "Let -o replace an empty directory or a regular file (a map is always "
                              "replaced; a non-empty directory that is not a map never is)",
                              cmd.tclap());
+  TCLAP::ValueArg<std::string> config_arg(
+      "", "config",
+      "YAML whose map_layers: section sets the parameters of the layers saved with the map "
+      "(default: built-in, docs/parameters.md)",
+      false, "", "FILE", cmd.tclap());
   cmd.parse(argc, argv);
+  const MapLayerParams layer_params = layerParamsFromConfig(config_arg.getValue());
   if (!(every_arg.getValue() > 0.0 && every_arg.getValue() <= 1e4))
     throw InputError("radarslam map-synth", "--every must be in (0, 10000] m");
   if (out_arg.getValue().empty()) throw InputError("-o", "empty output path");
@@ -97,7 +104,7 @@ int runMapSynth(int argc, char** argv) {
   }
   if (map.keyframes.empty())
     throw InputError(data_arg.getValue(), "no keyframe: no scan has a ground-truth pose");
-  saveMap(map, dir);
+  saveMap(map, dir, {}, layer_params);
   std::size_t points = 0;
   for (const auto& kf : map.keyframes) points += kf.points.size();
   std::cout << dir.string() << ": " << map.keyframes.size() << " keyframes, " << points << " points\n";

@@ -19,7 +19,9 @@
 #include "cli_run.h"
 #include "radarslam/io/dataset.h"
 #include "radarslam/io/trajectory_files.h"
+#include "radarslam/map/layer_files.h"
 #include "radarslam/map/map_io.h"
+#include "radarslam/map/sha256.h"
 #include "temp_dir.h"
 
 namespace {
@@ -27,6 +29,22 @@ namespace {
 namespace fs = std::filesystem;
 using Result = radarslam::test::CliResult;
 using radarslam::test::runCli;
+
+/// The layers saved with the map: listed with matching checksums, equal to the grid built now.
+void expectSavedLayers(const fs::path& map) {
+  const radarslam::MapManifestSummary s = radarslam::readMapManifest(map);
+  EXPECT_EQ(s.format_version, radarslam::kMapFormatVersion);
+  ASSERT_TRUE(s.layers.has_value());
+  ASSERT_EQ(s.layers->files.size(), 4u);
+  for (const auto& f : s.layers->files) {
+    std::ifstream in(map / f.name, std::ios::binary);
+    const std::string bytes(std::istreambuf_iterator<char>(in), {});
+    EXPECT_EQ(bytes.size(), f.bytes) << f.name;
+    EXPECT_EQ(radarslam::sha256Hex(bytes), f.sha256) << f.name;
+  }
+  EXPECT_EQ(radarslam::readGridLayer(map, *s.layers), radarslam::occupancyCells(radarslam::buildOccupancy(
+                                                          radarslam::loadMap(map), s.layers->params.grid)));
+}
 
 /// Two short drives through the same simulated world (traversal 2: other lane, other traffic),
 /// simulated once for the whole suite.
@@ -83,6 +101,7 @@ TEST_F(CliMap, WritesALoadableMapWithTrajectoryPreviewAndSummary) {
   EXPECT_NE(r.out.find("map summary"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("accuracy"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("peak RSS"), std::string::npos) << r.out;
+  expectSavedLayers(map);
 }
 
 TEST_F(CliMap, OneThreadIsDeterministic) {
@@ -115,6 +134,7 @@ TEST_F(CliMap, ExtendsAMapWithASecondTraversal) {
   EXPECT_NE(r.err.find("anchored"), std::string::npos) << r.err;
   const radarslam::KeyframeMap m = radarslam::loadMap(map);
   ASSERT_GT(m.keyframes.size(), before + 10);
+  expectSavedLayers(map);  // rebuilt from the extended map
   std::size_t loops = 0;
   for (const auto& e : m.edges) loops += e.kind == radarslam::EdgeKind::Loop;
   EXPECT_GT(loops, 0u);

@@ -127,11 +127,13 @@ TEST(MapIo, NewerFormatVersionIsRejected) {
   saveMap(radarslam::test::syntheticMap(2, 10), tmp / "m");
   const fs::path manifest = tmp / "m" / "manifest.yaml";
   std::string text = readAll(manifest);
-  const auto pos = text.find("format_version: 1\n");
+  const std::string current = "format_version: " + std::to_string(radarslam::kMapFormatVersion) + "\n";
+  const auto pos = text.find(current);
   ASSERT_NE(pos, std::string::npos);
-  text.replace(pos, 18, "format_version: 2\n");
+  const std::string newer = std::to_string(radarslam::kMapFormatVersion + 1);
+  text.replace(pos, current.size(), "format_version: " + newer + "\n");
   writeAll(manifest, text);
-  expectLoadError(tmp / "m", {"manifest.yaml", "version 2 is newer"});
+  expectLoadError(tmp / "m", {"manifest.yaml", "version " + newer + " is newer"});
 }
 
 // A .bin file of a newer version is refused even when its checksum is consistent (manifest fixed).
@@ -142,7 +144,7 @@ TEST(MapIo, NewerBinaryFileVersionIsRejected) {
   const std::string old_bytes = readAll(kf);
   std::string bytes = old_bytes;
   ASSERT_EQ(bytes.substr(0, 8), "RSLMKEYF");
-  bytes[8] = 2;  // u32 version, little-endian, at offset 8
+  bytes[8] = static_cast<char>(radarslam::kMapFormatVersion + 1);  // u32 version, little-endian, offset 8
   writeAll(kf, bytes);
   const fs::path manifest = tmp / "m" / "manifest.yaml";
   std::string text = readAll(manifest);
@@ -151,7 +153,9 @@ TEST(MapIo, NewerBinaryFileVersionIsRejected) {
   ASSERT_NE(pos, std::string::npos);
   text.replace(pos, old_sha.size(), radarslam::sha256Hex(bytes));
   writeAll(manifest, text);
-  expectLoadError(tmp / "m", {"keyframes.bin", "format version 2 is newer"});
+  expectLoadError(
+      tmp / "m",
+      {"keyframes.bin", "format version " + std::to_string(radarslam::kMapFormatVersion + 1) + " is newer"});
 }
 
 TEST(MapIo, NotAMapDirectory) {

@@ -15,6 +15,7 @@
 
 #include "radarslam/core/atomic_file.h"
 #include "radarslam/core/errors.h"
+#include "radarslam/map/layer_files.h"
 #include "radarslam/map/octomap_slab.h"
 #include "radarslam/map/sha256.h"
 
@@ -59,12 +60,43 @@ OccupancyGridMsg gridMessage(const OccupancyRaster& r, StampNs stamp) {
   g.height = static_cast<std::uint32_t>(r.height);
   g.origin.x = r.x_min;
   g.origin.y = r.y_min;
-  g.data.resize(r.p_occupied.size());
-  for (std::size_t i = 0; i < r.p_occupied.size(); ++i) {
-    const bool seen = r.observed.empty() ? r.p_occupied[i] != 0.5f : r.observed[i] != 0;
-    g.data[i] = seen ? static_cast<std::int8_t>(std::lround(100.0 * r.p_occupied[i])) : std::int8_t{-1};
-  }
+  g.data = occupancyCells(r);
   return g;
+}
+
+OccupancyGridMsg gridMessage(const fs::path& map_dir, const MapLayersManifest& layers, StampNs stamp) {
+  OccupancyGridMsg g;
+  g.header = mapHeader(stamp);
+  g.map_load_time = toTimeMsg(stamp);
+  g.resolution = static_cast<float>(layers.params.grid.resolution_m);
+  g.width = layers.grid_width;
+  g.height = layers.grid_height;
+  g.origin.x = layers.grid_origin_x;
+  g.origin.y = layers.grid_origin_y;
+  g.data = readGridLayer(map_dir, layers);
+  return g;
+}
+
+PointCloud2Msg cloudMessage(const fs::path& map_dir, const MapLayersManifest& layers, StampNs stamp) {
+  PointCloud2Msg m;
+  m.header = mapHeader(stamp);
+  m.fields = {{"x", 0}, {"y", 4}, {"z", 8}, {"intensity", 12}};
+  m.point_step = 16;
+  std::uint64_t n = 0;
+  m.data = readCloudLayer(map_dir, layers, n);
+  m.width = static_cast<std::uint32_t>(n);
+  m.row_step = m.width * m.point_step;
+  return m;
+}
+
+OctomapMsg octomapMessage(const fs::path& map_dir, const MapLayersManifest& layers, StampNs stamp) {
+  OctomapMsg m;
+  m.header = mapHeader(stamp);
+  m.binary = true;
+  m.id = "OcTree";
+  m.resolution = layers.params.octomap.resolution_m;
+  m.data = readOctomapLayer(map_dir, layers);
+  return m;
 }
 
 PointCloud2Msg cloudMessage(const KeyframeMap& map, StampNs stamp) {
@@ -154,13 +186,20 @@ std::vector<fs::path> writeGridFiles(const OccupancyGridMsg& grid, const fs::pat
     }
   }
   std::vector<fs::path> files;
-  for (const char* ext : {".pgm", ".png"}) {
-    const fs::path path = dir / (stem + ext);
-    std::vector<unsigned char> buf;
-    if (!cv::imencode(ext, img, buf)) throw InputError(path.string(), "cannot encode the grid image");
-    writeBytesAtomically(path, buf);
-    files.push_back(path);
-  }
+  // PGM streamed from the image (no second copy of the grid in memory; same bytes as OpenCV's P5).
+  const fs::path pgm = dir / (stem + ".pgm");
+  writeFileAtomically(pgm, [&](const fs::path& tmp) {
+    std::ofstream os(tmp, std::ios::binary);
+    os << "P5\n" << w << ' ' << h << "\n255\n";
+    for (int row = 0; row < h; ++row) os.write(img.ptr<char>(row), w);
+    if (!os.flush()) throw InputError(pgm.string(), "cannot write the grid image");
+  });
+  files.push_back(pgm);
+  const fs::path png = dir / (stem + ".png");
+  std::vector<unsigned char> buf;
+  if (!cv::imencode(".png", img, buf)) throw InputError(png.string(), "cannot encode the grid image");
+  writeBytesAtomically(png, buf);
+  files.push_back(png);
   // Rotation of the origin: yaw of the quaternion (our grids are axis-aligned: 0).
   const double yaw =
       std::atan2(2.0 * (grid.origin.qw * grid.origin.qz + grid.origin.qx * grid.origin.qy),
@@ -216,15 +255,15 @@ void writePcdFile(const PointCloud2Msg& cloud, const fs::path& path) {
 void writeOctomapFile(const OctomapMsg& octomap, const fs::path& path) {
   if (!octomap.binary || octomap.id != "OcTree" || !(octomap.resolution > 0))
     throw InputError(path.string(), "Octomap message is not a binary OcTree (id '" + octomap.id + "')");
-  octomap::OcTree tree(octomap.resolution);
-  std::istringstream in(std::string(reinterpret_cast<const char*>(octomap.data.data()), octomap.data.size()),
-                        std::ios::binary);
-  if (!tree.readBinaryData(in)) throw InputError(path.string(), "Octomap message data does not parse");
-  writeFileAtomically(path, [&](const fs::path& tmp) {
-    std::ofstream os(tmp, std::ios::binary);
-    if (!tree.writeBinaryConst(os) || !os.flush())
-      throw InputError(path.string(), "cannot write the OctoMap");
-  });
+  // Checked and counted by walking the stream, never built into a tree (which costs ~80 bytes per
+  // voxel: 600 MB for the demo map's 6.8 MB OctoMap).
+  OctomapSlab slab;
+  slab.resolution = octomap.resolution;
+  slab.binary_data.assign(reinterpret_cast<const char*>(octomap.data.data()), octomap.data.size());
+  const auto nodes = octreeBinaryNodeCount(slab.binary_data);
+  if (!nodes) throw InputError(path.string(), "Octomap message data does not parse");
+  slab.nodes = *nodes;
+  writeTextAtomically(path, octomapBinaryFile(slab));
 }
 
 }  // namespace radarslam::dds

@@ -20,6 +20,7 @@
 #include "radarslam/core/log.h"
 #include "radarslam/core/output_path.h"
 #include "radarslam/core/yaml_params.h"
+#include "radarslam/map/layer_files.h"
 #include "radarslam/map/sha256.h"
 
 namespace radarslam {
@@ -28,6 +29,8 @@ using mapcodec::Reader;
 using mapcodec::Writer;
 
 namespace {
+
+static_assert(MapMetadata{}.format_version == kMapFormatVersion, "a new map is of the current format");
 
 constexpr char kKeyframesMagic[9] = "RSLMKEYF";
 constexpr char kPointsMagic[9] = "RSLMPNTS";
@@ -237,7 +240,8 @@ struct WrittenFile {
   std::size_t bytes = 0;
 };
 
-std::string manifestText(const KeyframeMap& map, StampNs created, const std::vector<WrittenFile>& files) {
+std::string manifestText(const KeyframeMap& map, StampNs created, const std::vector<WrittenFile>& files,
+                         const std::optional<MapLayersManifest>& layers) {
   std::ostringstream m;
   m << "# radarslam map manifest (format: maps/README.md)\n"
     << "format_version: " << kMapFormatVersion << "\n"
@@ -259,6 +263,7 @@ std::string manifestText(const KeyframeMap& map, StampNs created, const std::vec
       << "    name: " << quoted(f.name) << "\n"
       << "    bytes: " << f.bytes << "\n"
       << "    sha256: " << quoted(f.sha256) << "\n";
+  if (layers) m << layersManifestText(*layers);
   return m.str();
 }
 
@@ -316,7 +321,8 @@ fs::path resolveMapPath(const std::string& name_or_path) {
   return local;
 }
 
-void saveMap(const KeyframeMap& map, const fs::path& dir_in, const MapSaveHooks& hooks) {
+void saveMap(const KeyframeMap& map, const fs::path& dir_in, const MapSaveHooks& hooks,
+             const std::optional<MapLayerParams>& layer_params) {
   if (dir_in.empty()) throw InputError("map", "empty map directory path");
   // Through a symbolic link the map it points to is replaced, never the link.
   const fs::path dir = followSymlinks(dir_in);
@@ -354,7 +360,12 @@ void saveMap(const KeyframeMap& map, const fs::path& dir_in, const MapSaveHooks&
       files.push_back({key, entry.name, sha256Hex(bytes), bytes.size()});
       if (hooks.after_file) hooks.after_file(entry.name);
     }
-    writeFileSynced(tmp / "manifest.yaml", manifestText(map, created, files));
+    std::optional<MapLayersManifest> layers;
+    if (layer_params) {
+      layers = writeMapLayers(map, tmp, *layer_params);
+      if (hooks.after_file) hooks.after_file(kLayersDir);
+    }
+    writeFileSynced(tmp / "manifest.yaml", manifestText(map, created, files, layers));
     if (hooks.after_file) hooks.after_file("manifest.yaml");
     if (hooks.write_products) hooks.write_products(tmp);
     fsyncDirectory(tmp);
@@ -391,6 +402,29 @@ void saveMap(const KeyframeMap& map, const fs::path& dir_in, const MapSaveHooks&
   }
   fsyncDirectory(parent);
   if (had_old) fs::remove_all(backup, ec);
+}
+
+MapManifestSummary readMapManifest(const fs::path& dir_in) {
+  const fs::path manifest_path = withoutTrailingSlash(dir_in) / "manifest.yaml";
+  const std::string mp = manifest_path.string();
+  requireRegularFile(manifest_path, "missing: not a radarslam map directory");
+  const YamlParams manifest = YamlParams::fromFile(mp);
+  MapManifestSummary s;
+  if (!manifest.has("format_version")) throw InputError(mp, "format_version missing");
+  unsigned version = 0;
+  manifest.get("format_version", version);
+  if (version == 0 || version > kMapFormatVersion)
+    throw InputError(mp, "map format version " + std::to_string(version) +
+                             " is not one this radarslam reads (1.." + std::to_string(kMapFormatVersion) +
+                             ")");
+  s.format_version = version;
+  std::string created = "0", keyframes = "0";
+  manifest.get("created_ns", created);
+  s.created_ns = static_cast<StampNs>(parseU64(created, mp, "created_ns"));
+  manifest.section("counts").get("keyframes", keyframes);
+  s.keyframes = parseU64(keyframes, mp, "counts.keyframes");
+  if (version >= 2) s.layers = parseLayersManifest(manifest, mp);
+  return s;
 }
 
 KeyframeMap loadMap(const fs::path& dir_in) {

@@ -169,6 +169,26 @@ OctomapSlab encodeOctomapSlab(const OccupancyRaster& r, const OctomapSlabParams&
   return out;
 }
 
+namespace {
+// One inner node at `depth` (root 0): its child codes, then its inner children in order.
+bool walkBinaryNode(std::string_view d, std::size_t& pos, std::size_t& nodes, int depth) {
+  if (depth >= kTreeDepth || d.size() - pos < 2) return false;
+  const unsigned codes = static_cast<unsigned char>(d[pos]) | static_cast<unsigned char>(d[pos + 1]) << 8;
+  pos += 2;
+  for (int i = 0; i < 8; ++i) nodes += ((codes >> (2 * i)) & 3u) != 0;  // 01 free, 10 occupied, 11 inner
+  for (int i = 0; i < 8; ++i)
+    if (((codes >> (2 * i)) & 3u) == 3u && !walkBinaryNode(d, pos, nodes, depth + 1)) return false;
+  return true;
+}
+}  // namespace
+
+std::optional<std::size_t> octreeBinaryNodeCount(std::string_view data) {
+  if (data.empty()) return 0;      // an empty tree writes no data
+  std::size_t pos = 0, nodes = 1;  // the root
+  if (!walkBinaryNode(data, pos, nodes, 0) || pos != data.size()) return std::nullopt;
+  return nodes;
+}
+
 std::string octomapBinaryFile(const OctomapSlab& slab) {
   return header("# Octomap OcTree binary file", slab) + slab.binary_data;
 }

@@ -7,6 +7,7 @@ namespace radarslam {
 
 void loadParams(const YamlParams& yaml, SlamParams& p) {
   loadParams(yaml, p.odometry);
+  loadParams(yaml.section("map_layers"), p.map_layers);
   const YamlParams slam = yaml.section("slam");
   slam.get("threads", p.threads, Range::closed(1, 64));
 

@@ -9,6 +9,7 @@
 #include "radarslam/dds/messages.h"
 #include "radarslam/map/keyframe_map.h"
 #include "radarslam/map/map_exports.h"
+#include "radarslam/map/map_layers.h"
 
 namespace radarslam::dds {
 
@@ -29,6 +30,17 @@ OctomapMsg octomapMessage(const KeyframeMap& map, const OctomapExportParams& par
 /// The same for the grid_columns fill, from an occupancy raster already built (at the OctoMap's
 /// resolution): the map server builds the raster once for the grid and the OctoMap.
 OctomapMsg octomapMessage(const OccupancyRaster& raster, StampNs stamp);
+
+/// The messages of a map's precomputed layers (map/layer_files.h: `map_dir`/layers/, described
+/// by the manifest's `layers` section): each file is read once, checked (size, SHA-256, header)
+/// and its body becomes the payload. Equal to the messages built from the keyframes with the
+/// same parameters. Throws InputError naming the file.
+OccupancyGridMsg gridMessage(const std::filesystem::path& map_dir, const MapLayersManifest& layers,
+                             StampNs stamp);
+PointCloud2Msg cloudMessage(const std::filesystem::path& map_dir, const MapLayersManifest& layers,
+                            StampNs stamp);
+OctomapMsg octomapMessage(const std::filesystem::path& map_dir, const MapLayersManifest& layers,
+                          StampNs stamp);
 
 /// SHA-256 (64 hex) of the grid cells (the int8 bytes of OccupancyGridMsg::data).
 std::string gridSha256(const OccupancyGridMsg& grid);

@@ -24,7 +24,8 @@ struct MapSensorGeometry {
 };
 
 struct MapMetadata {
-  std::uint32_t format_version = 1;  ///< set by loadMap to the version read; saveMap writes kMapFormatVersion
+  /// The version loadMap read; saveMap writes kMapFormatVersion (map_io.h), the default.
+  std::uint32_t format_version = 2;
   MapSensorGeometry sensor;
   std::string parameters_yaml;   ///< the parameters the map was built with, as YAML text
   StampNs created_ns = 0;        ///< creation time (saveMap fills it in when 0)

@@ -1,19 +1,23 @@
 #pragma once
 // The versioned on-disk map (a directory maps/NAME/, format in maps/README.md): manifest.yaml
 // (version, geometry, counts, SHA-256 per file), parameters.yaml, keyframes.bin, points.bin,
-// graph.bin. Saving is atomic for the whole directory: a crash at any point leaves the old or the
-// new complete map loadable.
+// graph.bin, and (format 2, optional) the published layers in layers/ (map/map_layers.h). Saving is atomic
+// for the whole directory: a crash at any point leaves the old or the new complete map loadable.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "radarslam/map/keyframe_map.h"
+#include "radarslam/map/map_layers.h"
 
 namespace radarslam {
 
-/// The newest map format this build reads and the one it writes.
-constexpr std::uint32_t kMapFormatVersion = 1;
+/// The newest map format this build reads and the one it writes. 1: keyframes, points, graph;
+/// 2: also the precomputed layers (grid, cloud, OctoMap) under `layers:` (optional). Every older
+/// version still loads.
+constexpr std::uint32_t kMapFormatVersion = 2;
 
 /// A plain name ("campus") resolves to maps/NAME relative to the current directory, or to
 /// $RADARSLAM_MAPS_DIR/NAME if that exists and ./maps/NAME does not; anything with a '/' (or '.',
@@ -36,7 +40,21 @@ struct MapSaveHooks {
 /// Throws InputError naming the file on I/O failure (the previous map stays loadable). Only a map
 /// (manifest.yaml), an empty directory or a regular file is replaced: any other non-empty
 /// directory is refused. A symbolic link `dir` is written through: the map it points to is replaced.
-void saveMap(const KeyframeMap& map, const std::filesystem::path& dir, const MapSaveHooks& hooks = {});
+/// With `layers`, the grid, cloud and OctoMap layers are built with these parameters and written
+/// into layers/ of the same temporary directory, listed in the manifest (map/map_layers.h).
+void saveMap(const KeyframeMap& map, const std::filesystem::path& dir, const MapSaveHooks& hooks = {},
+             const std::optional<MapLayerParams>& layers = std::nullopt);
+
+/// What a map server needs without loading the map: the manifest's version, creation time,
+/// keyframe count and layers section (nullopt: none, build them from the keyframes).
+struct MapManifestSummary {
+  std::uint32_t format_version = 0;
+  StampNs created_ns = 0;
+  std::uint64_t keyframes = 0;
+  std::optional<MapLayersManifest> layers;
+};
+/// Reads `dir`/manifest.yaml only. Throws InputError naming it if it is missing or malformed.
+MapManifestSummary readMapManifest(const std::filesystem::path& dir);
 
 /// Reads and verifies a map directory. If `dir` is missing but its `.NAME.map-backup` is complete
 /// (a save was interrupted between the two renames) the backup is moved back and loaded.

@@ -9,7 +9,9 @@
 // descent per insertion). The streams are byte-identical to octomap::OcTree's writeBinaryData()
 // and writeData() for the same voxels (test/map/test_octomap_slab.cpp).
 #include <cstddef>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "radarslam/map/map_exports.h"
 
@@ -35,6 +37,12 @@ struct OctomapSlab {
 /// multiple of the resolution, as buildOccupancy makes it). Throws InputError if the raster does
 /// not fit OctoMap's 2^16 voxels per axis around the origin.
 OctomapSlab encodeOctomapSlab(const OccupancyRaster& raster, const OctomapSlabParams& params = {});
+
+/// Walks an OcTree binary stream (OcTree::writeBinaryData: per inner node two bytes of 2-bit child
+/// codes, depth first) without building the tree: the number of nodes OcTree::size() would report
+/// after readBinaryData, or nullopt if the stream is malformed (truncated, trailing bytes, deeper
+/// than OctoMap's 16 levels). Lets a .bt file be checked and written in O(1) extra memory.
+std::optional<std::size_t> octreeBinaryNodeCount(std::string_view data);
 
 /// A whole .bt file (OcTree::writeBinaryConst) and .ot file (OcTree::write) of the slab.
 std::string octomapBinaryFile(const OctomapSlab& slab);

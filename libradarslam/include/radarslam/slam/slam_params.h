@@ -9,6 +9,7 @@
 #include "radarslam/loop/loop_verifier.h"
 #include "radarslam/loop/m2dp.h"
 #include "radarslam/map/keyframe_culling.h"
+#include "radarslam/map/map_layers.h"
 #include "radarslam/radar/peak_cloud.h"
 
 namespace radarslam {
@@ -99,10 +100,12 @@ struct SlamParams {
   /// 1: everything runs in the caller's thread (deterministic); >= 2: local mapping and loop
   /// closing run in their own threads, as in the paper.
   int threads = 3;  ///< valid [1, 64]
+  /// The published layers saved with the map (section `map_layers:`, map/map_layers.h).
+  MapLayerParams map_layers;
 };
 
 /// Overrides `params` from `yaml` (the front end via loadParams(yaml, params.odometry), the rest
-/// from the `slam:` section). Throws InputError for bad values.
+/// from the `slam:` section, the map layers from `map_layers:`). Throws InputError for bad values.
 void loadParams(const YamlParams& yaml, SlamParams& params);
 
 }  // namespace radarslam

@@ -1,0 +1,48 @@
+#pragma once
+// The file formats of a map's precomputed layers (map/map_layers.h): encoders used when saving,
+// and checked readers used by the map server. Every reader verifies the file's size and SHA-256
+// against its manifest entry and parses only the header; the body is read once, straight into
+// the caller's buffer (the message payload). Errors are InputError naming the file.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "radarslam/map/keyframe_map.h"
+#include "radarslam/map/map_layers.h"
+
+namespace radarslam {
+
+inline constexpr const char* kLayersDir = "layers";
+inline constexpr const char* kGridLayerFile = "grid.pgm";
+inline constexpr const char* kGridYamlLayerFile = "grid.yaml";
+inline constexpr const char* kCloudLayerFile = "cloud.pcd";
+inline constexpr const char* kOctomapLayerFile = "map.bt";
+
+/// P5 PGM of grid cells (row 0 = lowest y): top image row = highest y, pixel =
+/// round(255 * (100 - cell) / 100) for cells 0..100, 205 for unknown (-1).
+std::string gridPgm(const std::vector<std::int8_t>& cells, std::uint32_t width, std::uint32_t height);
+/// ROS map_server YAML for `image` (resolution as the float the message carries, origin exact).
+std::string gridRosYaml(const std::string& image, float resolution, double origin_x, double origin_y);
+/// PCD v0.7 (DATA binary, x y z intensity FLOAT32) of every keyframe point in the map frame; the
+/// data section is byte for byte the PointCloud2 payload of dds::cloudMessage. `points` receives
+/// the point count.
+std::string cloudPcd(const KeyframeMap& map, std::uint64_t* points);
+
+/// Grid cells of layers/grid.pgm (checked against `entry` and the manifest's geometry).
+std::vector<std::int8_t> readGridLayer(const std::filesystem::path& map_dir, const MapLayersManifest& layers);
+/// Payload (x y z intensity, 16 bytes per point) of layers/cloud.pcd; `points` = the count.
+std::vector<std::uint8_t> readCloudLayer(const std::filesystem::path& map_dir,
+                                         const MapLayersManifest& layers, std::uint64_t& points);
+/// OcTree binary data (the .bt body) of layers/map.bt.
+std::vector<std::int8_t> readOctomapLayer(const std::filesystem::path& map_dir,
+                                          const MapLayersManifest& layers);
+
+/// Reads a layer file: checks it is a regular file of entry.bytes bytes whose SHA-256 is
+/// entry.sha256; returns the header lines up to and including the line `last_header_line`
+/// (at most 64 lines / 4 KiB) and puts the rest into `body`.
+template <class Byte>
+std::string readLayerFile(const std::filesystem::path& map_dir, const LayerFileEntry& entry,
+                          const std::string& last_header_line, std::vector<Byte>& body);
+
+}  // namespace radarslam

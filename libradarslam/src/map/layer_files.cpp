@@ -1,0 +1,238 @@
+// Layer file formats: encoders and checked readers (map/layer_files.h).
+#include "radarslam/map/layer_files.h"
+
+#include <sys/stat.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "radarslam/core/errors.h"
+#include "radarslam/core/input_file.h"
+#include "radarslam/map/octomap_slab.h"
+#include "radarslam/map/sha256.h"
+
+namespace radarslam {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr unsigned char kUnknownPixel = 205;
+
+unsigned char cellPixel(int v) {
+  return v < 0 || v > 100 ? kUnknownPixel
+                          : static_cast<unsigned char>(std::lround(255.0 * (100 - v) / 100.0));
+}
+
+// Inverse of cellPixel for the 102 pixel values it produces; -2 for any other value.
+struct PixelTable {
+  std::int8_t cell[256];
+  PixelTable() {
+    std::memset(cell, -2, sizeof cell);
+    cell[kUnknownPixel] = -1;
+    for (int v = 0; v <= 100; ++v) cell[cellPixel(v)] = static_cast<std::int8_t>(v);
+  }
+};
+
+std::vector<std::string> splitWords(const std::string& line) {
+  std::istringstream ss(line);
+  std::vector<std::string> words;
+  for (std::string w; ss >> w;) words.push_back(w);
+  return words;
+}
+
+// "KEY a b c" -> {a, b, c}, or InputError.
+std::vector<std::string> pcdLine(const std::vector<std::string>& lines, std::size_t i, const char* key,
+                                 const std::string& file) {
+  auto words = i < lines.size() ? splitWords(lines[i]) : std::vector<std::string>{};
+  if (words.empty() || words[0] != key)
+    throw InputError(file, std::string("PCD header: expected ") + key + " in line " + std::to_string(i + 1));
+  words.erase(words.begin());
+  return words;
+}
+
+}  // namespace
+
+std::string gridPgm(const std::vector<std::int8_t>& cells, std::uint32_t width, std::uint32_t height) {
+  std::string out = "P5\n" + std::to_string(width) + " " + std::to_string(height) + "\n255\n";
+  const std::size_t header = out.size();
+  out.resize(header + static_cast<std::size_t>(width) * height);
+  for (std::uint32_t row = 0; row < height; ++row) {
+    const std::int8_t* src = cells.data() + static_cast<std::size_t>(height - 1 - row) * width;
+    char* dst = out.data() + header + static_cast<std::size_t>(row) * width;
+    for (std::uint32_t col = 0; col < width; ++col) dst[col] = static_cast<char>(cellPixel(src[col]));
+  }
+  return out;
+}
+
+std::string gridRosYaml(const std::string& image, float resolution, double origin_x, double origin_y) {
+  char res[32];
+  const auto [end, ec] = std::to_chars(res, res + sizeof res - 1, resolution);  // shortest round trip
+  *end = '\0';
+  (void)ec;
+  char yaml[512];
+  std::snprintf(yaml, sizeof yaml,
+                "image: %s\nmode: scale\nresolution: %s\norigin: [%.17g, %.17g, 0]\nnegate: 0\n"
+                "occupied_thresh: 0.65\nfree_thresh: 0.196\n",
+                image.c_str(), res, origin_x, origin_y);
+  return yaml;
+}
+
+std::string cloudPcd(const KeyframeMap& map, std::uint64_t* points) {
+  std::uint64_t n = 0;
+  for (const auto& kf : map.keyframes) n += kf.points.size();
+  const std::string count = std::to_string(n);
+  std::string pcd = "# .PCD v0.7 - radarslam map points, map frame\nVERSION 0.7\nFIELDS x y z intensity\n";
+  pcd.append("SIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH ").append(count);
+  pcd.append("\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS ").append(count).append("\nDATA binary\n");
+  std::size_t at = pcd.size();
+  pcd.resize(at + n * 16);
+  for (const auto& kf : map.keyframes) {
+    const double c = std::cos(kf.pose.phi), s = std::sin(kf.pose.phi);
+    for (const auto& p : kf.points) {
+      // Same arithmetic as dds::cloudMessage and exportPointCloud: identical floats.
+      const float v[4] = {static_cast<float>(kf.pose.x + c * p.x - s * p.y),
+                          static_cast<float>(kf.pose.y + s * p.x + c * p.y), 0.f, p.power};
+      std::memcpy(pcd.data() + at, v, sizeof v);  // little-endian host
+      at += sizeof v;
+    }
+  }
+  if (points) *points = n;
+  return pcd;
+}
+
+template <class Byte>
+std::string readLayerFile(const fs::path& map_dir, const LayerFileEntry& entry,
+                          const std::string& last_header_line, std::vector<Byte>& body) {
+  static_assert(sizeof(Byte) == 1);
+  const fs::path path = map_dir / entry.name;
+  const std::string ps = path.string();
+  requireRegularFile(path, "missing layer file (listed in manifest.yaml)");
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw InputError(ps, "cannot stat the layer file");
+  const auto size = static_cast<std::uint64_t>(st.st_size);
+  if (size != entry.bytes)
+    throw InputError(ps, "size mismatch: " + std::to_string(size) + " bytes, manifest says " +
+                             std::to_string(entry.bytes));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(ps, "cannot open the layer file");
+  std::string header, line;
+  bool found = false;
+  for (int i = 0; i < 64 && header.size() < 4096 && std::getline(in, line); ++i) {
+    header.append(line).push_back('\n');
+    if (line == last_header_line) {
+      found = true;
+      break;
+    }
+  }
+  if (!found || header.size() > size)
+    throw InputError(ps, "malformed header: no '" + last_header_line + "' line within 64 lines");
+  body.resize(size - header.size());
+  in.read(reinterpret_cast<char*>(body.data()), static_cast<std::streamsize>(body.size()));
+  if (!in) throw InputError(ps, "read failed");
+  Sha256 sha;
+  sha.update(header);
+  sha.update({reinterpret_cast<const unsigned char*>(body.data()), body.size()});
+  const std::string actual = sha.hexDigest();
+  if (actual != entry.sha256)
+    throw InputError(ps, "checksum mismatch (SHA-256 " + actual + ", manifest says " + entry.sha256 +
+                             "): layer file is corrupt");
+  return header;
+}
+template std::string readLayerFile(const fs::path&, const LayerFileEntry&, const std::string&,
+                                   std::vector<std::int8_t>&);
+template std::string readLayerFile(const fs::path&, const LayerFileEntry&, const std::string&,
+                                   std::vector<std::uint8_t>&);
+
+std::vector<std::int8_t> readGridLayer(const fs::path& map_dir, const MapLayersManifest& layers) {
+  const LayerFileEntry& e = layers.file("grid");
+  const std::string file = (map_dir / e.name).string();
+  std::vector<std::int8_t> px;
+  const std::string header = readLayerFile(map_dir, e, "255", px);
+  const std::string expected =
+      "P5\n" + std::to_string(layers.grid_width) + " " + std::to_string(layers.grid_height) + "\n255\n";
+  if (header != expected || px.size() != static_cast<std::size_t>(layers.grid_width) * layers.grid_height)
+    throw InputError(file, "not the " + std::to_string(layers.grid_width) + "x" +
+                               std::to_string(layers.grid_height) + " 8-bit P5 image the manifest describes");
+  // Back to cells, flipping rows in place (image top row = highest y; cells row 0 = lowest y).
+  static const PixelTable table;
+  const std::size_t w = layers.grid_width, h = layers.grid_height;
+  std::vector<std::int8_t> tmp(w);
+  for (std::size_t row = 0; row < h / 2; ++row) {
+    std::int8_t* a = px.data() + row * w;
+    std::int8_t* b = px.data() + (h - 1 - row) * w;
+    std::memcpy(tmp.data(), a, w);
+    std::memcpy(a, b, w);
+    std::memcpy(b, tmp.data(), w);
+  }
+  for (auto& v : px) {
+    const std::int8_t c = table.cell[static_cast<unsigned char>(v)];
+    if (c == -2)
+      throw InputError(file, "pixel value " + std::to_string(static_cast<unsigned char>(v)) +
+                                 " is not one a radarslam grid layer holds");
+    v = c;
+  }
+  return px;
+}
+
+std::vector<std::uint8_t> readCloudLayer(const fs::path& map_dir, const MapLayersManifest& layers,
+                                         std::uint64_t& points) {
+  const LayerFileEntry& e = layers.file("cloud");
+  const std::string file = (map_dir / e.name).string();
+  std::vector<std::uint8_t> data;
+  const std::string header = readLayerFile(map_dir, e, "DATA binary", data);
+  std::vector<std::string> lines;
+  {
+    std::istringstream ss(header);
+    for (std::string l; std::getline(ss, l);)
+      if (!l.empty() && l[0] != '#') lines.push_back(l);
+  }
+  using V = std::vector<std::string>;
+  if (pcdLine(lines, 1, "FIELDS", file) != V{"x", "y", "z", "intensity"} ||
+      pcdLine(lines, 2, "SIZE", file) != V{"4", "4", "4", "4"} ||
+      pcdLine(lines, 3, "TYPE", file) != V{"F", "F", "F", "F"} ||
+      pcdLine(lines, 4, "COUNT", file) != V{"1", "1", "1", "1"} ||
+      pcdLine(lines, 6, "HEIGHT", file) != V{"1"})
+    throw InputError(file, "PCD header: expected fields x y z intensity, FLOAT32, height 1");
+  const std::string n = std::to_string(layers.cloud_points);
+  if (pcdLine(lines, 5, "WIDTH", file) != V{n} || pcdLine(lines, 8, "POINTS", file) != V{n} ||
+      data.size() != layers.cloud_points * 16)
+    throw InputError(file, "PCD holds " + std::to_string(data.size() / 16) + " points, manifest says " + n);
+  points = layers.cloud_points;
+  return data;
+}
+
+std::vector<std::int8_t> readOctomapLayer(const fs::path& map_dir, const MapLayersManifest& layers) {
+  const LayerFileEntry& e = layers.file("octomap");
+  const std::string file = (map_dir / e.name).string();
+  std::vector<std::int8_t> data;
+  const std::string header = readLayerFile(map_dir, e, "data", data);
+  std::istringstream ss(header);
+  std::string line;
+  std::getline(ss, line);
+  if (line.rfind("# Octomap OcTree binary file", 0) != 0)
+    throw InputError(file, "not an OctoMap binary file (first line '" + line.substr(0, 64) + "')");
+  bool id_ok = false, res_ok = false;
+  std::string size_text;
+  while (std::getline(ss, line)) {
+    const auto w = splitWords(line);
+    if (w.size() == 2 && w[0] == "id") id_ok = w[1] == "OcTree";
+    if (w.size() == 2 && w[0] == "size") size_text = w[1];
+    if (w.size() == 2 && w[0] == "res") {
+      const double r = std::atof(w[1].c_str());
+      res_ok = r > 0 && std::abs(r - layers.params.octomap.resolution_m) <= 1e-5 * r;
+    }
+  }
+  if (!id_ok || !res_ok)
+    throw InputError(file, "OctoMap header: expected id OcTree and the resolution the manifest gives");
+  const auto nodes = octreeBinaryNodeCount({reinterpret_cast<const char*>(data.data()), data.size()});
+  if (!nodes || std::to_string(*nodes) != size_text)
+    throw InputError(
+        file, "OctoMap data is malformed or does not hold the " + size_text + " nodes its header says");
+  return data;
+}
+
+}  // namespace radarslam
