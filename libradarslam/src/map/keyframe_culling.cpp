@@ -8,6 +8,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "radarslam/core/se2_covariance.h"
+
 namespace radarslam {
 
 namespace {
@@ -39,18 +41,6 @@ Eigen::Matrix3d covarianceOf(const std::array<double, 9>& information) {
   const Eigen::FullPivLU<Eigen::Matrix3d> lu(info);
   if (!lu.isInvertible()) return Eigen::Matrix3d::Identity() * 1e6;
   return lu.inverse();
-}
-
-/// Covariance of a (+) b in a's frame (a with cov_a, b with cov_b in a's end frame).
-Eigen::Matrix3d composeCov(const Pose& a, const Eigen::Matrix3d& cov_a, const Pose& b,
-                           const Eigen::Matrix3d& cov_b) {
-  const double c = std::cos(a.phi), s = std::sin(a.phi);
-  Eigen::Matrix3d ja = Eigen::Matrix3d::Identity();
-  ja(0, 2) = -s * b.x - c * b.y;
-  ja(1, 2) = c * b.x - s * b.y;
-  Eigen::Matrix3d jb = Eigen::Matrix3d::Identity();
-  jb(0, 0) = c, jb(0, 1) = -s, jb(1, 0) = s, jb(1, 1) = c;
-  return ja * cov_a * ja.transpose() + jb * cov_b * jb.transpose();
 }
 
 /// Kept keyframes on a grid of coverage-radius cells.
@@ -129,7 +119,7 @@ CullingReport cullRedundantKeyframes(KeyframeMap& map, const KeyframeCullingPara
       std::unordered_set<std::uint64_t> seen{e.from};
       while (dropped(out.to) && chain_from.count(out.to) && seen.insert(out.to).second) {
         const PoseGraphEdge& next = *chain_from.at(out.to);
-        cov = composeCov(out.relative, cov, next.relative, covarianceOf(next.information));
+        cov = composeCovariance(out.relative, cov, next.relative, covarianceOf(next.information));
         out.relative = compose(out.relative, next.relative);
         out.to = next.to;
       }

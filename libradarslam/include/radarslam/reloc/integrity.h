@@ -23,6 +23,8 @@
 
 #include <deque>
 
+#include "radarslam/core/se2_covariance.h"
+
 namespace radarslam {
 
 class YamlParams;
@@ -55,10 +57,6 @@ double chi2Quantile3(double p);
 
 /// Covariance of the odometry motion `motion` (T_prev_cur) under the noise model, in its frame.
 Eigen::Matrix3d odometryCovariance(const mrpt::math::TPose2D& motion, const IntegrityParams& params);
-
-/// a (+) b with the first-order covariance (a's in the map frame, b's in a's frame).
-Eigen::Matrix3d composeCovariance(const mrpt::math::TPose2D& a, const Eigen::Matrix3d& cov_a,
-                                  const mrpt::math::TPose2D& b, const Eigen::Matrix3d& cov_b);
 
 /// (x, y, phi) of b - a in the map frame, phi wrapped to (-pi, pi].
 Eigen::Vector3d poseDifference(const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b);

@@ -1,0 +1,18 @@
+#include "radarslam/core/se2_covariance.h"
+
+#include <cmath>
+
+namespace radarslam {
+
+Eigen::Matrix3d composeCovariance(const mrpt::math::TPose2D& a, const Eigen::Matrix3d& cov_a,
+                                  const mrpt::math::TPose2D& b, const Eigen::Matrix3d& cov_b) {
+  const double c = std::cos(a.phi), s = std::sin(a.phi);
+  Eigen::Matrix3d ja = Eigen::Matrix3d::Identity();
+  ja(0, 2) = -s * b.x - c * b.y;
+  ja(1, 2) = c * b.x - s * b.y;
+  Eigen::Matrix3d jb = Eigen::Matrix3d::Identity();
+  jb(0, 0) = c, jb(0, 1) = -s, jb(1, 0) = s, jb(1, 1) = c;
+  return ja * cov_a * ja.transpose() + jb * cov_b * jb.transpose();
+}
+
+}  // namespace radarslam
