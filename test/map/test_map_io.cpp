@@ -45,6 +45,11 @@ void expectLoadError(const fs::path& dir, std::initializer_list<std::string> par
 
 }  // namespace
 
+TEST(MapIo, ANewMapIsOfTheCurrentFormat) {
+  // (A static_assert here is not a constant expression for clang 14: MapMetadata holds strings.)
+  EXPECT_EQ(MapMetadata{}.format_version, kMapFormatVersion);
+}
+
 TEST(MapIo, RoundTripIsExact) {
   radarslam::test::TempDir tmp;
   const KeyframeMap map = radarslam::test::syntheticMap();

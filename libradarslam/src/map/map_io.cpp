@@ -30,8 +30,6 @@ using mapcodec::Writer;
 
 namespace {
 
-static_assert(MapMetadata{}.format_version == kMapFormatVersion, "a new map is of the current format");
-
 constexpr char kKeyframesMagic[9] = "RSLMKEYF";
 constexpr char kPointsMagic[9] = "RSLMPNTS";
 constexpr char kGraphMagic[9] = "RSLMGRPH";
