@@ -47,7 +47,7 @@ void expectLoadError(const fs::path& dir, std::initializer_list<std::string> par
 
 TEST(MapIo, ANewMapIsOfTheCurrentFormat) {
   // (A static_assert here is not a constant expression for clang 14: MapMetadata holds strings.)
-  EXPECT_EQ(MapMetadata{}.format_version, kMapFormatVersion);
+  EXPECT_EQ(radarslam::MapMetadata{}.format_version, radarslam::kMapFormatVersion);
 }
 
 TEST(MapIo, RoundTripIsExact) {
