@@ -22,6 +22,7 @@
 #include "radarslam/map/layer_files.h"
 #include "radarslam/map/map_io.h"
 #include "radarslam/map/sha256.h"
+#include "simulated_dataset.h"
 #include "temp_dir.h"
 
 namespace {
@@ -51,25 +52,22 @@ void expectSavedLayers(const fs::path& map) {
 class CliMap : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    root_ = new fs::path(fs::temp_directory_path() / ("radarslam_cli_map_" + std::to_string(::getpid())));
-    fs::create_directories(*root_);
-    for (const int t : {1, 2}) {
-      const Result r = runCli("simulate '" + (*root_ / ("t" + std::to_string(t))).string() +
-                                  "' --scans 50 --traversal " + std::to_string(t),
-                              *root_);
-      ASSERT_EQ(r.code, 0) << r.err;
-    }
+    for (const int t : {1, 2})
+      data_[t - 1] =
+          new fs::path(radarslam::test::simulatedDataset("--scans 50 --traversal " + std::to_string(t)));
   }
   static void TearDownTestSuite() {
-    std::error_code ec;
-    fs::remove_all(*root_, ec);
-    delete root_;
+    for (fs::path*& p : data_) {
+      delete p;
+      p = nullptr;
+    }
   }
-  static fs::path data(int traversal) { return *root_ / ("t" + std::to_string(traversal)); }
-  static fs::path* root_;
+  /// The drive of `traversal` (1 or 2): shared by the tests, read only (test::simulatedDataset).
+  static fs::path data(int traversal) { return *data_[traversal - 1]; }
+  static fs::path* data_[2];
   radarslam::test::TempDir tmp_;
 };
-fs::path* CliMap::root_ = nullptr;
+fs::path* CliMap::data_[2] = {nullptr, nullptr};
 
 TEST_F(CliMap, WritesALoadableMapWithTrajectoryPreviewAndSummary) {
   const fs::path map = tmp_ / "maps" / "drive";

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "simulated_dataset.h"
 #include "temp_dir.h"
 
 namespace radarslam {
@@ -43,17 +44,16 @@ std::vector<std::vector<std::string>> rows(const std::filesystem::path& p) {
 TEST(LocalizeCli, SecondTraversalOfSimulatedWorld) {
   test::TempDir tmp;
   const auto d = tmp.path();
-  const std::string scans = " --scans 120";
-  ASSERT_EQ(run("simulate '" + (d / "t1").string() + "'" + scans, d / "sim1.log"), 0)
-      << slurp(d / "sim1.log");
-  ASSERT_EQ(run("simulate '" + (d / "t2").string() + "'" + scans + " --traversal 2", d / "sim2.log"), 0)
-      << slurp(d / "sim2.log");
-  ASSERT_EQ(run("map-synth '" + (d / "t1").string() + "' -o '" + (d / "map").string() + "'", d / "synth.log"),
-            0)
+  // The drives of test_localize_integrity.cpp (simulated once for both).
+  constexpr std::size_t kScans = 130;
+  const std::string scans = "--scans " + std::to_string(kScans);
+  const std::filesystem::path t1 = test::simulatedDataset(scans);
+  const std::filesystem::path t2 = test::simulatedDataset(scans + " --traversal 2");
+  ASSERT_EQ(run("map-synth '" + t1.string() + "' -o '" + (d / "map").string() + "'", d / "synth.log"), 0)
       << slurp(d / "synth.log");
   const auto poses = d / "poses.tum";
-  ASSERT_EQ(run("localize '" + (d / "map").string() + "' '" + (d / "t2").string() + "' -o '" +
-                    poses.string() + "' --eval-dir '" + (d / "eval").string() + "' -q",
+  ASSERT_EQ(run("localize '" + (d / "map").string() + "' '" + t2.string() + "' -o '" + poses.string() +
+                    "' --eval-dir '" + (d / "eval").string() + "' -q",
                 d / "loc.log"),
             0)
       << slurp(d / "loc.log");
@@ -61,14 +61,14 @@ TEST(LocalizeCli, SecondTraversalOfSimulatedWorld) {
 
   // Per-scan side file: one row per scan, status and localised flag consistent.
   const auto side = rows(poses.string() + ".csv");
-  ASSERT_EQ(side.size(), 120u) << log;
+  ASSERT_EQ(side.size(), kScans) << log;
   std::size_t localised = 0;
   for (const auto& r : side) {
     ASSERT_EQ(r.size(), 28u);
     localised += r[3] == "1";
     EXPECT_EQ(r[3] == "1", r[2] != "lost");
   }
-  EXPECT_GE(localised, 108u) << log;  // >= 90 %
+  EXPECT_GE(localised, kScans * 9 / 10) << log;
   EXPECT_EQ(rows(poses).size(), localised);
   // Boreas localisation rows: stamps, 3x4 T_keyframe_scan, 6x6 inverse covariance; one per pose.
   const auto boreas = rows(poses.string() + ".boreas.txt");

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "simulated_dataset.h"
 #include "temp_dir.h"
 
 namespace radarslam {
@@ -79,12 +80,15 @@ class LocalizeIntegrity : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     tmp_ = new test::TempDir;
-    const fs::path d = tmp_->path();
-    const std::string n = " --scans " + std::to_string(kScans);
-    ASSERT_TRUE(runs("simulate '" + (d / "t1").string() + "'" + n, d));
-    ASSERT_TRUE(runs("simulate '" + (d / "t2").string() + "'" + n + " --traversal 2", d));
+    const std::string n = "--scans " + std::to_string(kScans);
+    t1_ = new fs::path(test::simulatedDataset(n));
+    t2_ = new fs::path(test::simulatedDataset(n + " --traversal 2"));
   }
-  static void TearDownTestSuite() { delete tmp_; }
+  static void TearDownTestSuite() {
+    delete tmp_;
+    delete t1_;
+    delete t2_;
+  }
 
   /// Localises `dataset` in `map`; the rows of errors.csv (stamp scan status pos_err head_err ...) and
   /// the side file.
@@ -105,8 +109,11 @@ class LocalizeIntegrity : public ::testing::Test {
   static void driveOutOfTheMapAndBack(const std::string& name, bool adaptive_odometry);
 
   static test::TempDir* tmp_;
+  static fs::path *t1_, *t2_;  ///< the two traversals (test::simulatedDataset, shared; read only)
 };
 test::TempDir* LocalizeIntegrity::tmp_ = nullptr;
+fs::path* LocalizeIntegrity::t1_ = nullptr;
+fs::path* LocalizeIntegrity::t2_ = nullptr;
 
 bool trusted(const std::string& status) { return status == "tracking" || status == "global_fix"; }
 
@@ -125,9 +132,9 @@ std::vector<std::size_t> checkTrusted(const std::vector<std::vector<std::string>
 
 TEST_F(LocalizeIntegrity, KidnappedVehicleIsNeverTrustedWhileWrong) {
   const fs::path d = tmp_->path();
-  ASSERT_TRUE(runs("map-synth '" + (d / "t1").string() + "' -o '" + (d / "map").string() + "'", d));
+  ASSERT_TRUE(runs("map-synth '" + t1_->string() + "' -o '" + (d / "map").string() + "'", d));
   // Scans 0-44, then from 95 on: the vehicle is carried ~130 m further along the route.
-  dropScans(d / "t2", d / "kidnap", 45, 95);
+  dropScans(*t2_, d / "kidnap", 45, 95);
   std::vector<std::vector<std::string>> errors, side;
   // config/oxford.yaml's odometry and a self-trusting tracker; RADARSLAM_TEST_NO_INTEGRITY=1 turns
   // the checks off (to see this test fail without them).
@@ -156,7 +163,7 @@ TEST_F(LocalizeIntegrity, KidnappedVehicleIsNeverTrustedWhileWrong) {
 void LocalizeIntegrity::driveOutOfTheMapAndBack(const std::string& name, bool adaptive_odometry) {
   const fs::path d = tmp_->path();
   if (!fs::exists(d / "map_gap")) {
-    dropScans(d / "t1", d / "t1_gap", 40, 100);
+    dropScans(*t1_, d / "t1_gap", 40, 100);
     ASSERT_TRUE(runs("map-synth '" + (d / "t1_gap").string() + "' -o '" + (d / "map_gap").string() + "'", d));
   }
   const fs::path config = d / (name + ".yaml");
@@ -174,7 +181,7 @@ void LocalizeIntegrity::driveOutOfTheMapAndBack(const std::string& name, bool ad
     c << slurp(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml") << loc;
   }
   std::vector<std::vector<std::string>> errors, side;
-  localize(d / "map_gap", d / "t2", name, kScans, errors, side, config.string());
+  localize(d / "map_gap", *t2_, name, kScans, errors, side, config.string());
   const auto good = checkTrusted(errors);
   // Back in the map from about scan 100: a correct trusted pose within 20 scans.
   bool found = false;
