@@ -197,7 +197,7 @@ struct RadarOdometry::Impl {
     g.pose = f.pose;
     g.compensate(mc_velocity, mc_enabled);
     f = std::move(g);
-    step.keyframe_links.clear();
+    step.keyframe_observations.clear();  // measured in the image before Doppler compensation
   }
 
   OdometryStep process(const CObservationRadarScan& scan_in) {
@@ -317,9 +317,11 @@ struct RadarOdometry::Impl {
       }
     };
     t0 = Clock::now();
+    // The observations the pose is refined with: the descriptor inliers first (in order), then
+    // the tracked keyframe points.
+    std::vector<Observation> obs;
     if (ok) {
       // Descriptor inliers, each moved to where the keyframe's patch really lies (sub-pixel).
-      std::vector<Observation> obs;
       std::vector<char> observed(keyframe.raw.size(), 0);
       for (const auto& m : inliers) {
         cv::Point2f px = f.pixels[m.cur_index];
@@ -375,14 +377,16 @@ struct RadarOdometry::Impl {
       velocity_known = !gap;
       f.compensate(cur_compensation, mc);
       if (needNewKeyframe(params.keyframes, T, step.inliers)) {
-        // Links for local mapping: descriptor inliers that the final estimate still explains.
+        // Observations for local mapping: those the final estimate still explains.
         const double gate2 = params.outliers.inlier_gate_m * params.outliers.inlier_gate_m;
         const double c = std::cos(T.phi), s = std::sin(T.phi);
-        for (const auto& m : inliers) {
-          const Eigen::Vector2d& q = f.features.xy[m.cur_index];
+        for (std::size_t i = 0; i < obs.size(); ++i) {
+          const Eigen::Vector2d q =
+              mc ? compensatePoint(obs[i].raw, obs[i].dt, cur_compensation) : obs[i].raw;
           const Eigen::Vector2d pred(c * q.x() - s * q.y() + T.x, s * q.x() + c * q.y() + T.y);
-          if ((pred - keyframe.features.xy[m.ref_index]).squaredNorm() < gate2)
-            step.keyframe_links.emplace_back(m.ref_index, m.cur_index);
+          if ((pred - keyframe.features.xy[obs[i].ref_index]).squaredNorm() < gate2)
+            step.keyframe_observations.push_back(
+                {obs[i].ref_index, i < inliers.size() ? inliers[i].cur_index : -1, q});
         }
         f.pose = step.pose;
         makeDopplerKeyframe(f, scan_in, cur_compensation, mc, step);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 
 #include "radarslam/slam/local_bundle_adjustment.h"
@@ -25,6 +26,7 @@ void LocalMapper::insert(const KeyframeJob& job) {
   kf.cloud = std::move(cloud);
   kf.keypoints = job.keypoints;
   kf.keypoint_point.assign(job.keypoints.size(), -1);
+  kf.keypoint_offset.assign(job.keypoints.size(), Eigen::Vector2d::Zero());
   {
     std::lock_guard lock(state_.mutex);
     if (job.id != state_.keyframes.size()) throw std::logic_error("local mapping: keyframes out of order");
@@ -33,7 +35,7 @@ void LocalMapper::insert(const KeyframeJob& job) {
       kf.session_start = job.id > 0;
     } else {
       const SlamKeyframe& prev = state_.keyframes.back();
-      kf.odom_edge = between(prev.odom_pose, job.odom_pose);
+      kf.odom_edge = kf.tracked_edge = between(prev.odom_pose, job.odom_pose);
       kf.pose = compose(prev.pose, kf.odom_edge);
     }
     associate(kf, job);
@@ -52,9 +54,12 @@ void LocalMapper::insert(const KeyframeJob& job) {
 void LocalMapper::associate(SlamKeyframe& kf, const KeyframeJob& job) {
   if (job.id == state_.session_first || job.lost) return;
   SlamKeyframe& prev = state_.keyframes.back();
-  for (const auto& [pi, ci] : job.links) {
-    if (pi < 0 || ci < 0 || static_cast<std::size_t>(pi) >= prev.keypoints.size() ||
-        static_cast<std::size_t>(ci) >= kf.keypoints.size() || kf.keypoint_point[ci] >= 0)
+  // An offset measured in the previous keyframe's frame, rotated into this one's (v_kf = R^T v_prev).
+  const double c = std::cos(kf.tracked_edge.phi), s = std::sin(kf.tracked_edge.phi);
+  for (const KeyframeObservation& o : job.observations) {
+    const int pi = o.ref_index, ci = o.cur_index;
+    if (pi < 0 || static_cast<std::size_t>(pi) >= prev.keypoints.size() ||
+        static_cast<std::size_t>(ci + 1) > kf.keypoints.size() || (ci >= 0 && kf.keypoint_point[ci] >= 0))
       continue;
     std::int64_t& id = prev.keypoint_point[pi];
     if (id < 0) {
@@ -65,8 +70,13 @@ void LocalMapper::associate(SlamKeyframe& kf, const KeyframeJob& job) {
       id = static_cast<std::int64_t>(state_.points.size());
       state_.points.push_back(std::move(mp));
     }
-    state_.points[id].observations.push_back({kf.id, kf.keypoints[ci]});
-    kf.keypoint_point[ci] = id;
+    const Eigen::Vector2d& d = prev.keypoint_offset[pi];
+    const Eigen::Vector2d z = o.xy + Eigen::Vector2d(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
+    state_.points[id].observations.push_back({kf.id, z});
+    if (ci >= 0) {
+      kf.keypoint_point[ci] = id;
+      kf.keypoint_offset[ci] = z - kf.keypoints[ci];
+    }
   }
 }
 
@@ -86,6 +96,7 @@ void LocalMapper::retire(std::uint64_t id) {
   }
   kf.keypoints = {};
   kf.keypoint_point = {};
+  kf.keypoint_offset = {};
 }
 
 void LocalMapper::bundleAdjust(std::uint64_t newest) {
@@ -126,7 +137,7 @@ void LocalMapper::bundleAdjust(std::uint64_t newest) {
     }
     for (std::uint64_t id = first + 1; id <= newest; ++id)
       if (!state_.keyframes[id].lost)
-        pb.priors.push_back({pose_index.at(id - 1), pose_index.at(id), state_.keyframes[id].odom_edge});
+        pb.priors.push_back({pose_index.at(id - 1), pose_index.at(id), state_.keyframes[id].tracked_edge});
   }
   if (pb.observations.empty()) return;
   solveLocalBundleAdjustment(pb, lp);

@@ -1,8 +1,8 @@
 #pragma once
 // Local mapping (paper Sec. III-B) for one new keyframe: its peak cloud (Algorithm 1, motion
-// compensated) and M2DP descriptor for loop closing, map points from the tracker's keypoint
-// links (a keypoint linked to one of the previous keyframe's becomes another observation of that
-// map point), local bundle adjustment over the newest keyframes, and culling of map points seen
+// compensated) and M2DP descriptor for loop closing, map points from the tracker's measurements
+// (each of the previous keyframe's keypoints the tracker measured in the new keyframe becomes
+// another observation of that keypoint's map point, at the measured position), local bundle adjustment over the newest keyframes, and culling of map points seen
 // by too few keyframes once they leave the window.
 #include <memory>
 #include <utility>
@@ -23,7 +23,7 @@ struct KeyframeJob {
   double travelled_m = 0;
   BodyVelocity velocity;
   std::vector<Eigen::Vector2d> keypoints;
-  std::vector<std::pair<int, int>> links;
+  std::vector<KeyframeObservation> observations;  ///< OdometryStep::keyframe_observations
   std::shared_ptr<const CObservationRadarScan> scan;
 };
 

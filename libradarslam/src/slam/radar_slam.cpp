@@ -158,7 +158,7 @@ struct RadarSlam::Impl {
       job.travelled_m = travelled;
       job.velocity = o.velocity;
       job.keypoints = o.keyframe_points;
-      job.links = o.keyframe_links;
+      job.observations = o.keyframe_observations;
       job.scan = std::make_shared<CObservationRadarScan>(scan);
       if (params.threads >= 2) {
         mapping_queue.push(std::move(job));

@@ -44,6 +44,7 @@ struct SlamKeyframe {
   TPose2D pose;                ///< map frame, current estimate
   TPose2D odom_pose;           ///< the tracker's (odometry) frame
   TPose2D odom_edge;           ///< measured pose relative to the previous keyframe (refined by local BA)
+  TPose2D tracked_edge;        ///< the same as the odometry tracked it, never refined: local BA's prior
   bool lost = false;           ///< created by a tracking loss: odom_edge is a prediction
   bool session_start = false;  ///< first keyframe of a session: no odometry edge to the previous one
   double travelled_m = 0;
@@ -52,6 +53,11 @@ struct SlamKeyframe {
   // Local mapping's association data, kept while the keyframe is in the BA window.
   std::vector<Eigen::Vector2d> keypoints;
   std::vector<std::int64_t> keypoint_point;  ///< map point index per keypoint, or -1
+  /// Per keypoint of an existing map point: that point's observation here minus the keypoint (the
+  /// detector's position of the landmark differs from where the point's first patch was measured);
+  /// the next keyframe's measurement of this keypoint is shifted by it, so a point's observations
+  /// all locate the same patch.
+  std::vector<Eigen::Vector2d> keypoint_offset;
 };
 
 struct SlamMapPoint {

@@ -32,6 +32,17 @@ struct StageTimes {
   double total() const { return cartesian + detect + describe + align_prep + match + clique + svd + refine; }
 };
 
+/// One of the previous keyframe's keypoints as the final pose estimate measured it in the new
+/// keyframe: its patch aligned in the new image (sub-pixel), motion compensated, in the new
+/// keyframe's sensor frame - the same measurement eq. (4) refined the pose with, so local BA
+/// (Sec. III-B) sees what the odometry saw, not the detector's independent (jittered, biased)
+/// position of the same landmark.
+struct KeyframeObservation {
+  int ref_index = -1;  ///< the previous keyframe's keypoint
+  int cur_index = -1;  ///< the new keyframe's keypoint at that landmark (a descriptor inlier), or -1
+  Eigen::Vector2d xy;  ///< measured position, new keyframe frame
+};
+
 struct OdometryStep {
   StampNs stamp = 0;           ///< the scan's reference time
   mrpt::math::TPose2D pose;    ///< radar pose in the first scan's frame
@@ -44,10 +55,10 @@ struct OdometryStep {
   bool new_keyframe = false;
   /// When new_keyframe: the new keyframe's keypoints in its sensor frame at the reference time
   /// (motion compensated) - the observations local mapping turns into map points - and, when it
-  /// was tracked (not a re-initialisation), the inlier links (previous keyframe's keypoint index,
-  /// new keyframe's keypoint index) that say which keypoints are the same landmark.
+  /// was tracked (not a re-initialisation), where the final estimate saw the previous keyframe's
+  /// keypoints in the new keyframe (keyframe_observations).
   std::vector<Eigen::Vector2d> keyframe_points;
-  std::vector<std::pair<int, int>> keyframe_links;
+  std::vector<KeyframeObservation> keyframe_observations;
   StageTimes times;
 };
 
