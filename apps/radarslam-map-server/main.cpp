@@ -28,7 +28,8 @@ int run(int argc, char** argv) {
       "map-server",
       "Publishes a saved radarslam map over DDS (ROS 2 wire-compatible, latched): "
       "rt/map (nav_msgs/OccupancyGrid), rt/radarslam/cloud_map (sensor_msgs/PointCloud2), "
-      "rt/radarslam/octomap (octomap_msgs/Octomap), rt/radarslam/map_info (radarslam/MapInfo). "
+      "rt/radarslam/octomap (octomap_msgs/Octomap), rt/radarslam/map_info (radarslam/MapInfo), "
+      "rt/radarslam/map_files (radarslam/MapFileChunk: the map's own files, for `radarslam localize dds:`). "
       "Reloads when the map changes on disk or on SIGHUP; SIGINT/SIGTERM stop it.");
   auto& tc = cmd.tclap();
   TCLAP::ValueArg<std::string> map("", "map", "Map name (maps/NAME) or directory", true, "", "NAME|DIR", tc);
@@ -37,8 +38,17 @@ int run(int argc, char** argv) {
                                       "as config/dds.xml)",
                                       false, "", "FILE", tc);
   TCLAP::ValueArg<unsigned> domain("", "domain", "DDS domain id (ROS_DOMAIN_ID), 0..232", false, 0, "N", tc);
-  TCLAP::ValueArg<std::string> layers("", "layers", "Layers to publish, comma-separated", false,
-                                      "grid,cloud,octomap", "LIST", tc);
+  TCLAP::ValueArg<std::string> layers("", "layers",
+                                      "Layers to publish, comma-separated (files: manifest.yaml and the map "
+                                      "files it lists, what `radarslam localize dds:` loads)",
+                                      false, "grid,cloud,octomap,files", "LIST", tc);
+  TCLAP::SwitchArg files_with_layers("", "files-with-layers",
+                                     "The files layer also carries layers/* (grid, cloud, OctoMap files; "
+                                     "not needed to localise, already on their own topics)",
+                                     tc);
+  TCLAP::ValueArg<std::size_t> files_chunk("", "files-chunk-bytes",
+                                           "Bytes of map file data per rt/radarslam/map_files sample", false,
+                                           std::size_t{4} << 20, "N", tc);
   TCLAP::ValueArg<double> resolution(
       "", "resolution",
       "Grid and OctoMap cell size [m] (default: the saved layers', 0.2 for a "
@@ -56,6 +66,8 @@ int run(int argc, char** argv) {
   params.grid.resolution_m = resolution.getValue();
   params.octomap.resolution_m = resolution.getValue();
   params.resolution_set = resolution.isSet();
+  params.map_files.with_layers = files_with_layers.getValue();
+  params.map_files.chunk_bytes = files_chunk.getValue();
   if (!std::filesystem::is_directory(params.map_dir))
     throw InputError(params.map_dir.string(), "no such map directory");
   const std::string xml = config.isSet() ? dds::readConfigFile(config.getValue()) : dds::kLoopbackConfigXml;
