@@ -154,6 +154,15 @@ TEST(MapFileAssembler, RejectsChunkCountMismatches) {
     EXPECT_NE(error.find("keyframes.bin: chunk count mismatch"), std::string::npos) << error;
   }
   {
+    Fixture f;  // a file larger than its chunks can hold (e.g. to make the receiver hash a huge sparse file)
+    auto chunks = f.chunks(1);
+    const std::size_t i = firstOf(chunks, "keyframes.bin");
+    for (std::size_t j = i; j < chunks.size() && chunks[j].path == "keyframes.bin"; ++j)
+      chunks[j].file_size = std::uint64_t{1} << 50;
+    const auto [error, done] = f.feed(chunks);
+    EXPECT_NE(error.find("keyframes.bin: 1125899906842624 bytes cannot be"), std::string::npos) << error;
+  }
+  {
     Fixture f;  // a publication whose total does not add up
     auto chunks = f.chunks(1);
     for (auto& c : chunks) c.total_chunks += 1;

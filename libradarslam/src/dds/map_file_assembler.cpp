@@ -128,6 +128,9 @@ bool MapFileAssembler::add(const MapFileChunkMsg& c) {
   if (!isHex64(c.file_sha256)) fail(path + ": file SHA-256 is not 64 hex digits");
   if (c.chunk_count < 1 || c.chunk_index >= c.chunk_count)
     fail(path + ": chunk " + std::to_string(c.chunk_index) + " of " + std::to_string(c.chunk_count));
+  if (c.file_size > static_cast<std::uint64_t>(c.chunk_count) * kMaxMapFileChunkBytes)
+    fail(path + ": " + std::to_string(c.file_size) + " bytes cannot be " + std::to_string(c.chunk_count) +
+         " chunks of at most " + std::to_string(kMaxMapFileChunkBytes) + " bytes");
   if (c.data.size() > kMaxMapFileChunkBytes)
     fail(path + ": chunk of " + std::to_string(c.data.size()) + " bytes (at most " +
          std::to_string(kMaxMapFileChunkBytes) + ")");
