@@ -1,6 +1,7 @@
 // radarslam-map-server: publishes a saved map (maps/NAME) over DDS with ROS 2 naming and latched
 // QoS: the occupancy grid on rt/map (ROS 2 /map), the point cloud on rt/radarslam/cloud_map, the
-// OctoMap on rt/radarslam/octomap and radarslam/MapInfo on rt/radarslam/map_info. Reloads when
+// OctoMap on rt/radarslam/octomap, radarslam/MapInfo on rt/radarslam/map_info and the map's own files
+// (radarslam/MapFileChunk, for `radarslam localize dds:`) on rt/radarslam/map_files. Reloads when
 // the map on disk changes (manifest polled every --poll seconds) or on SIGHUP; exits cleanly on
 // SIGINT/SIGTERM. Idle: the main thread sleeps in sigtimedwait, nothing polls faster than --poll.
 #include <csignal>
@@ -60,6 +61,8 @@ int run(int argc, char** argv) {
 
   if (!(resolution.getValue() > 0)) throw InputError("--resolution", "must be > 0");
   if (!(poll.getValue() >= 0.01)) throw InputError("--poll", "must be >= 0.01 s");
+  if (files_chunk.getValue() < 1 || files_chunk.getValue() > dds::kMaxMapFileChunkBytes)
+    throw InputError("--files-chunk-bytes", "must be 1.." + std::to_string(dds::kMaxMapFileChunkBytes));
   map_server::ServerParams params;
   params.map_dir = resolveMapPath(map.getValue());
   params.layers = map_server::parseLayers(layers.getValue());
