@@ -121,6 +121,23 @@ TEST(MapFileAssembler, RejectsFilesTheManifestDoesNotList) {
   EXPECT_NE(error.find("graph2.bin: not a file the manifest lists"), std::string::npos) << error;
 }
 
+TEST(MapFileAssembler, RejectsAPublicationWithoutAFileTheMapNeeds) {
+  Fixture f;
+  auto chunks = f.chunks(1);
+  ASSERT_EQ(chunks.back().path, "graph.bin");  // the last file: the others keep their indices
+  std::vector<MapFileChunkMsg> without;
+  for (const auto& c : chunks)
+    if (c.path != "graph.bin") without.push_back(c);
+  for (auto& c : without) {
+    c.file_count -= 1;
+    c.total_chunks = static_cast<std::uint32_t>(without.size());
+  }
+  const auto [error, done] = f.feed(without);
+  EXPECT_FALSE(done);
+  EXPECT_NE(error.find("graph.bin: listed by the manifest but not in the publication"), std::string::npos)
+      << error;
+}
+
 TEST(MapFileAssembler, RejectsAWrongChecksum) {
   Fixture f;
   auto chunks = f.chunks(1);

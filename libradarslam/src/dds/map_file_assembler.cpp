@@ -192,6 +192,8 @@ bool MapFileAssembler::add(const MapFileChunkMsg& c) {
       fail("revision " + std::to_string(pub_.revision) + ": " + std::to_string(chunks_) +
            " chunks make all files, the publication says " + std::to_string(pub_.total_chunks));
     if (!manifest_read_) fail("revision " + std::to_string(pub_.revision) + ": no manifest.yaml");
+    for (const auto& e : listMapFiles(dir_, false))  // what loadMap reads must all be there
+      if (!files_.count(e.name)) fail(e.name + ": listed by the manifest but not in the publication");
     complete_ = true;
   }
   return complete_;
