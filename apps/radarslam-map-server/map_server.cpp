@@ -21,7 +21,7 @@ using mrpt::system::LVL_INFO;
 using mrpt::system::LVL_WARN;
 
 Layers parseLayers(const std::string& text) {
-  Layers l{false, false, false};
+  Layers l{false, false, false, false};
   std::stringstream ss(text);
   std::string item;
   while (std::getline(ss, item, ',')) {
@@ -31,8 +31,10 @@ Layers parseLayers(const std::string& text) {
       l.cloud = true;
     else if (item == "octomap")
       l.octomap = true;
+    else if (item == "files")
+      l.files = true;
     else
-      throw InputError("--layers", "unknown layer '" + item + "' (use grid, cloud, octomap)");
+      throw InputError("--layers", "unknown layer '" + item + "' (use grid, cloud, octomap, files)");
   }
   return l;
 }
@@ -73,6 +75,7 @@ MapServer::MapServer(dds::Domain& domain, ServerParams params) : domain_(domain)
   if (params_.layers.octomap)
     octomap_pub_ = std::make_unique<dds::Publisher<dds::OctomapMsg>>(domain_, dds::kOctomapTopic, latched);
   info_pub_ = std::make_unique<dds::Publisher<dds::MapInfoMsg>>(domain_, dds::kMapInfoTopic, latched);
+  if (params_.layers.files) files_pub_ = std::make_unique<dds::MapFilesPublisher>(domain_, params_.map_files);
 }
 
 void MapServer::load() {
@@ -115,6 +118,12 @@ void MapServer::load() {
     info.keyframes = static_cast<std::uint32_t>(map.keyframes.size());
     info.created = dds::toTimeMsg(map.meta.created_ns);
     publishBuilt(map, info, summary);
+  }
+  if (files_pub_) {  // last: the layers keep their timing; checked before any chunk is sent
+    const dds::MapFilesSummary f =
+        files_pub_->publish(params_.map_dir, {map_name_, info.revision, now, before.value_or("")});
+    summary += "files " + std::to_string(f.files) + " (" + std::to_string(f.chunks) + " chunks, " +
+               std::to_string(f.bytes) + " bytes)" + sinceStart() + ", ";
   }
   // Every file was checked against the manifest read first; a manifest that changed meanwhile
   // means a new map is being swapped in: the next poll publishes it.

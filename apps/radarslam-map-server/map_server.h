@@ -8,6 +8,7 @@
 #include <string>
 
 #include <radarslam/dds/domain.h>
+#include <radarslam/dds/map_file_publisher.h>
 #include <radarslam/dds/messages.h>
 #include <radarslam/map/map_exports.h>
 #include <radarslam/map/map_io.h>
@@ -16,8 +17,9 @@ namespace radarslam::map_server {
 
 struct Layers {
   bool grid = true, cloud = true, octomap = true;
+  bool files = true;  ///< the map's own files (rt/radarslam/map_files), for `localize dds:`
 };
-/// "grid,cloud,octomap" (any subset, any order). Throws InputError("--layers", ...).
+/// "grid,cloud,octomap,files" (any subset, any order). Throws InputError("--layers", ...).
 Layers parseLayers(const std::string& text);
 
 struct ServerParams {
@@ -27,7 +29,8 @@ struct ServerParams {
   /// layers), or when `resolution_set` asks for another resolution than the saved layers'.
   GridExportParams grid;
   OctomapExportParams octomap;
-  bool resolution_set = false;  ///< --resolution given: grid.resolution_m = octomap.resolution_m
+  bool resolution_set = false;    ///< --resolution given: grid.resolution_m = octomap.resolution_m
+  dds::MapFilesParams map_files;  ///< the map files layer (layers.files)
 };
 
 class MapServer {
@@ -35,11 +38,12 @@ class MapServer {
   MapServer(dds::Domain& domain, ServerParams params);
 
   /// Publishes the map's layers and MapInfo: the grid and MapInfo first, then each other layer as
-  /// soon as it is read. A map with saved layers (map/map_layers.h) is served from the layer
-  /// files alone (checked against the manifest; the keyframes are not loaded); an older map's
-  /// layers are built from its keyframes (with a warning). Throws InputError naming the file if
-  /// the map or a layer file is bad: nothing is published if the manifest or the grid is bad;
-  /// layers published before a later one failed stay published.
+  /// soon as it is read, the map's own files last (checked against the manifest before any is
+  /// sent; a bad one throws and the previous revision's files stay published). A map with saved layers
+  /// (map/map_layers.h) is served from the layer files alone (checked against the manifest; the keyframes are
+  /// not loaded); an older map's layers are built from its keyframes (with a warning). Throws InputError
+  /// naming the file if the map or a layer file is bad: nothing is published if the manifest or the grid is
+  /// bad; layers published before a later one failed stay published.
   void load();
   /// Reloads if the manifest changed since the last load (checked by content hash). Returns true
   /// if a new map was published. A map that fails to load is reported once (WARN) and the last
@@ -59,6 +63,7 @@ class MapServer {
   std::unique_ptr<dds::Publisher<dds::PointCloud2Msg>> cloud_pub_;
   std::unique_ptr<dds::Publisher<dds::OctomapMsg>> octomap_pub_;
   std::unique_ptr<dds::Publisher<dds::MapInfoMsg>> info_pub_;
+  std::unique_ptr<dds::MapFilesPublisher> files_pub_;
   std::string loaded_manifest_sha_;
   std::string failed_fingerprint_;  // mapFingerprint() of the map that last failed to load
   std::uint32_t revision_ = 0;

@@ -3,7 +3,8 @@
 // Writes the localised scans' poses (TUM) and a per-scan side file with status, covariance and fit
 // (columns in docs/localization.md). With ground truth in DIR it reports the localisation errors.
 // DDS (docs/dds.md): --publish sends every localised pose on rt/radarslam/pose; DIR = "dds:" takes
-// the scans from rt/radarslam/radar_scan instead of a dataset (localize_dds.h).
+// the scans from rt/radarslam/radar_scan instead of a dataset (localize_dds.h); MAP = "dds:" takes the
+// map from a radarslam-map-server's rt/radarslam/map_files (localize_map_dds.h).
 
 #include <algorithm>
 #include <chrono>
@@ -36,6 +37,7 @@
 #include "command.h"
 #include "dataset_config.h"
 #include "localize_dds.h"
+#include "localize_map_dds.h"
 #include "localize_output.h"
 #include "localize_truth.h"
 #include "progress_line.h"
@@ -66,8 +68,12 @@ int runLocalize(int argc, char** argv) {
       "against the map (odometry prediction + robust ICP against the local submap), with loss detection "
       "and automatic relocalisation. Writes the localised scans' poses (TUM) and FILE.csv with status, "
       "covariance and fit of every scan. See docs/localization.md.");
-  TCLAP::UnlabeledValueArg<std::string> map_arg("map", "Map name (maps/NAME) or directory", true, "", "MAP",
-                                                cmd.tclap());
+  TCLAP::UnlabeledValueArg<std::string> map_arg(
+      "map",
+      "Map name (maps/NAME) or directory; or dds: (dds:DOMAIN) to receive it from a radarslam-map-server "
+      "(rt/radarslam/map_files: its files are checked into a private temporary directory, loaded, and "
+      "removed; DOMAIN defaults to --domain)",
+      true, "", "MAP", cmd.tclap());
   TCLAP::UnlabeledValueArg<std::string> dir_arg(
       "dataset",
       "Dataset directory (any supported layout) or .rawlog; or dds: (dds:TOPIC) for live scans over DDS "
@@ -104,6 +110,10 @@ int runLocalize(int argc, char** argv) {
       "DIR = dds: ends after this many seconds without a scan; also the longest wait for "
       "--wait-subscribers and for pose acknowledgements at exit",
       false, 5.0, "S", cmd.tclap());
+  TCLAP::ValueArg<double> map_timeout_arg(
+      "", "map-timeout",
+      "MAP = dds:, seconds to wait for a complete map (error and exit 1 when none arrived)", false, 30.0, "S",
+      cmd.tclap());
   TCLAP::ValueArg<unsigned> wait_subs_arg("", "wait-subscribers",
                                           "With --publish: wait for N pose subscribers before the first scan",
                                           false, 0, "N", cmd.tclap());
@@ -134,8 +144,10 @@ int runLocalize(int argc, char** argv) {
   const bool from_dds = dds_opts.scan_topic.has_value();
   if (from_dds && first_arg.getValue() != 0) throw InputError(where, "--first needs a dataset, not dds:");
   if (!from_dds && !fs::exists(dir)) throw InputError(dir.string(), "no such file or directory");
-  const fs::path map_dir = resolveMapPath(map_arg.getValue());
-  checkNoOverlap(map_dir, out);
+  const std::optional<std::uint32_t> map_domain = ddsMapDomain(map_arg.getValue(), domain_arg.getValue());
+  if (map_domain && !(map_timeout_arg.getValue() > 0)) throw InputError(where, "--map-timeout must be > 0");
+  fs::path map_dir = map_domain ? fs::path() : resolveMapPath(map_arg.getValue());
+  if (!map_domain) checkNoOverlap(map_dir, out);
   if (!from_dds) checkNoOverlap(dir, out);
   checkFileOutput(out);
   // The per-scan side file FILE.csv goes next to a regular FILE (not next to /dev/null).
@@ -150,7 +162,7 @@ int runLocalize(int argc, char** argv) {
     checkFileOutput(boreas_path);
   }
   if (eval_arg.isSet()) {
-    checkNoOverlap(map_dir, eval_arg.getValue());
+    if (!map_domain) checkNoOverlap(map_dir, eval_arg.getValue());
     if (!from_dds) checkNoOverlap(dir, eval_arg.getValue());
     checkDirectoryOutput(eval_arg.getValue(), "--eval-dir");
   }
@@ -160,8 +172,25 @@ int runLocalize(int argc, char** argv) {
   if (from_dds || dds_opts.publish) dds = std::make_unique<LocalizeDds>(dds_opts);
 
   const auto t_load = Clock::now();
+  std::string map_label = map_dir.string();  // what the log lines and the side file name
+  std::unique_ptr<FetchedMap> fetched;
+  if (map_domain) {
+    fetched = std::make_unique<FetchedMap>(
+        map_arg.getValue(), MapFetchOptions{*map_domain, dds_opts.config_file, map_timeout_arg.getValue()});
+    map_dir = fetched->dir();
+    const auto& r = fetched->received();
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "%s (map '%s' revision %u over DDS domain %u)", map_arg.getValue().c_str(),
+                  r.map_name.c_str(), r.revision, *map_domain);
+    map_label = buf;
+    logger().logFmt(mrpt::system::LVL_INFO,
+                    "localize: received map '%s' revision %u: %zu files, %zu chunks, %.1f MB in %.2f s",
+                    r.map_name.c_str(), r.revision, r.files, r.chunks, static_cast<double>(r.bytes) / 1e6,
+                    r.seconds);
+  }
   const KeyframeMap map = loadMap(map_dir);
-  if (map.keyframes.empty()) throw InputError(map_dir.string(), "the map has no keyframe");
+  fetched.reset();  // the received files are in memory now: remove the temporary directory
+  if (map.keyframes.empty()) throw InputError(map_label, "the map has no keyframe");
   const double load_s = std::chrono::duration<double>(Clock::now() - t_load).count();
 
   const std::unique_ptr<DatasetReader> reader = from_dds ? nullptr : openDataset(dir);
@@ -203,8 +232,8 @@ int runLocalize(int argc, char** argv) {
   const std::size_t max_count =
       count_arg.isSet() ? static_cast<std::size_t>(count_arg.getValue()) : static_cast<std::size_t>(-1);
   std::size_t end = 0;  // dataset only
-  std::cerr << "localize: map " << map_dir.string() << " (" << map.keyframes.size()
-            << " keyframes, loaded in " << std::to_string(load_s).substr(0, 4) << " s), ";
+  std::cerr << "localize: map " << map_label << " (" << map.keyframes.size() << " keyframes, loaded in "
+            << std::to_string(load_s).substr(0, 4) << " s), ";
   if (reader) {
     if (first >= reader->size())
       throw InputError(dir.string(), "--first " + std::to_string(first) + " is beyond the last scan (" +
@@ -245,7 +274,7 @@ int runLocalize(int argc, char** argv) {
 
   Trajectory poses;
   std::ostringstream side;
-  side << "# radarslam localize: map " << map_dir.string() << ", dataset " << dir.string() << "\n"
+  side << "# radarslam localize: map " << map_label << ", dataset " << dir.string() << "\n"
        << "# stamp_s scan status localised x y phi cov_xx cov_xy cov_xphi cov_yy cov_yphi cov_phiphi "
           "fit_score "
           "inliers time_ms "

@@ -178,6 +178,45 @@ MapInfoMsg fromC(const radarslam_msg_dds__MapInfo_& in) {
   return m;
 }
 
+// --- radarslam/MapFileChunk -------------------------------------------------------------------
+template <>
+void toC(const MapFileChunkMsg& m, radarslam_msg_dds__MapFileChunk_& out,
+         std::vector<sensor_msgs_msg_dds__PointField_>&) {
+  toC(m.header, out.header);
+  out.map_name = view(m.map_name);
+  out.revision = m.revision;
+  out.manifest_sha256 = view(m.manifest_sha256);
+  out.file_count = m.file_count;
+  out.total_chunks = m.total_chunks;
+  out.file_index = m.file_index;
+  out.path = view(m.path);
+  out.file_size = m.file_size;
+  out.file_sha256 = view(m.file_sha256);
+  out.chunk_index = m.chunk_index;
+  out.chunk_count = m.chunk_count;
+  out.offset = m.offset;
+  viewSeq(out.data, m.data);
+}
+template <>
+MapFileChunkMsg fromC(const radarslam_msg_dds__MapFileChunk_& in) {
+  MapFileChunkMsg m;
+  m.header = fromC(in.header);
+  m.map_name = copyStr(in.map_name);
+  m.revision = in.revision;
+  m.manifest_sha256 = copyStr(in.manifest_sha256);
+  m.file_count = in.file_count;
+  m.total_chunks = in.total_chunks;
+  m.file_index = in.file_index;
+  m.path = copyStr(in.path);
+  m.file_size = in.file_size;
+  m.file_sha256 = copyStr(in.file_sha256);
+  m.chunk_index = in.chunk_index;
+  m.chunk_count = in.chunk_count;
+  m.offset = in.offset;
+  m.data = copySeq<std::uint8_t>(in.data);
+  return m;
+}
+
 // --- radarslam/LocalizationStatus -------------------------------------------------------------
 template <>
 void toC(const LocalizationStatusMsg& m, radarslam_msg_dds__LocalizationStatus_& out,

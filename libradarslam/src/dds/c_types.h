@@ -12,6 +12,7 @@
 #include "octomap_msgs/msg/Octomap.h"
 #include "radarslam/dds/messages.h"
 #include "radarslam/msg/LocalizationStatus.h"
+#include "radarslam/msg/MapFileChunk.h"
 #include "radarslam/msg/MapInfo.h"
 #include "radarslam/msg/RadarScan.h"
 #include "sensor_msgs/msg/PointCloud2.h"
@@ -36,6 +37,7 @@ RADARSLAM_DDS_CTYPE(PoseWithCovarianceStampedMsg, geometry_msgs_msg_dds__PoseWit
 RADARSLAM_DDS_CTYPE(MapInfoMsg, radarslam_msg_dds__MapInfo_);
 RADARSLAM_DDS_CTYPE(RadarScanMsg, radarslam_msg_dds__RadarScan_);
 RADARSLAM_DDS_CTYPE(LocalizationStatusMsg, radarslam_msg_dds__LocalizationStatus_);
+RADARSLAM_DDS_CTYPE(MapFileChunkMsg, radarslam_msg_dds__MapFileChunk_);
 #undef RADARSLAM_DDS_CTYPE
 
 /// Fills `out` as a view of `msg` (valid while msg and `storage` live).

@@ -80,7 +80,16 @@ struct Qos {
     dds_qset_reliability(q, t.reliable ? DDS_RELIABILITY_RELIABLE : DDS_RELIABILITY_BEST_EFFORT,
                          DDS_SECS(10));
     dds_qset_durability(q, t.transient_local ? DDS_DURABILITY_TRANSIENT_LOCAL : DDS_DURABILITY_VOLATILE);
-    dds_qset_history(q, DDS_HISTORY_KEEP_LAST, t.depth);
+    if (t.keep_all)
+      dds_qset_history(q, DDS_HISTORY_KEEP_ALL, 0);
+    else
+      dds_qset_history(q, DDS_HISTORY_KEEP_LAST, t.depth);
+    // What a transient-local writer keeps for late joiners is the durability service's history
+    // (Cyclone 0.10: default KEEP_LAST 1, whatever the writer's own history): make it the same.
+    if (t.transient_local)
+      dds_qset_durability_service(q, 0, t.keep_all ? DDS_HISTORY_KEEP_ALL : DDS_HISTORY_KEEP_LAST,
+                                  t.keep_all ? 0 : t.depth, DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED,
+                                  DDS_LENGTH_UNLIMITED);
     const dds_data_representation_id_t xcdr1[] = {DDS_DATA_REPRESENTATION_XCDR1};
     dds_qset_data_representation(q, 1, xcdr1);
   }
@@ -282,5 +291,6 @@ RADARSLAM_DDS_INSTANTIATE(PoseWithCovarianceStampedMsg);
 RADARSLAM_DDS_INSTANTIATE(MapInfoMsg);
 RADARSLAM_DDS_INSTANTIATE(RadarScanMsg);
 RADARSLAM_DDS_INSTANTIATE(LocalizationStatusMsg);
+RADARSLAM_DDS_INSTANTIATE(MapFileChunkMsg);
 
 }  // namespace radarslam::dds

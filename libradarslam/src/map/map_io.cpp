@@ -425,6 +425,31 @@ MapManifestSummary readMapManifest(const fs::path& dir_in) {
   return s;
 }
 
+std::vector<MapFileEntry> listMapFiles(const fs::path& dir_in, bool with_layers) {
+  const fs::path manifest_path = withoutTrailingSlash(dir_in) / "manifest.yaml";
+  const std::string mp = manifest_path.string();
+  const MapManifestSummary summary = readMapManifest(dir_in);  // version, layers section checked
+  const YamlParams manifest = YamlParams::fromFile(mp);
+  const YamlParams files = manifest.section("files");
+  std::vector<MapFileEntry> out;
+  for (const auto& entry : kFiles) {
+    const YamlParams f = files.section(entry.key);
+    std::string bytes_text;
+    MapFileEntry e;
+    f.get("name", e.name);
+    f.get("sha256", e.sha256);
+    f.get("bytes", bytes_text);
+    if (e.name != entry.name || e.sha256.size() != 64 || bytes_text.empty())
+      throw InputError(mp,
+                       std::string("files.").append(entry.key).append(": name, bytes and sha256 required"));
+    e.bytes = parseU64(bytes_text, mp, std::string("files.").append(entry.key).append(".bytes"));
+    out.push_back(std::move(e));
+  }
+  if (with_layers && summary.layers)
+    for (const auto& l : summary.layers->files) out.push_back({l.name, l.bytes, l.sha256});
+  return out;
+}
+
 KeyframeMap loadMap(const fs::path& dir_in) {
   const fs::path dir = withoutTrailingSlash(dir_in);
   std::error_code ec;

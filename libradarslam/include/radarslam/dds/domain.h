@@ -49,11 +49,17 @@ std::string ddsTypeName();
 
 /// Quality of service of one topic. Latched (maps, as nav2/mrpt map servers): RELIABLE,
 /// TRANSIENT_LOCAL, KEEP_LAST 1, so a subscriber that joins later still gets the last sample.
+/// Transient local: a late joiner gets what the writer's history holds (KEEP_LAST depth, or all).
 struct TopicQos {
   bool reliable = true;
   bool transient_local = false;
   std::int32_t depth = 1;  ///< KEEP_LAST depth
+  bool keep_all = false;   ///< KEEP_ALL instead of KEEP_LAST depth
   static TopicQos latched() { return {true, true, 1}; }
+  /// Latched, the last `depth` samples (e.g. every chunk of a map's files).
+  static TopicQos latchedLast(std::int32_t depth) { return {true, true, depth}; }
+  /// Reliable, transient local, keep all (a reader that must not lose a latched sample).
+  static TopicQos latchedAll() { return {true, true, 1, true}; }
   static TopicQos stream(std::int32_t depth = 10) { return {true, false, depth}; }
   static TopicQos bestEffort(std::int32_t depth = 1) { return {false, false, depth}; }
 };

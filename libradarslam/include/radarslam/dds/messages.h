@@ -17,6 +17,7 @@ inline constexpr const char* kMapTopic = "rt/map";
 inline constexpr const char* kCloudMapTopic = "rt/radarslam/cloud_map";
 inline constexpr const char* kOctomapTopic = "rt/radarslam/octomap";
 inline constexpr const char* kMapInfoTopic = "rt/radarslam/map_info";
+inline constexpr const char* kMapFilesTopic = "rt/radarslam/map_files";
 inline constexpr const char* kPoseTopic = "rt/radarslam/pose";
 inline constexpr const char* kLocalizationStatusTopic = "rt/radarslam/localization_status";
 inline constexpr const char* kRadarScanTopic = "rt/radarslam/radar_scan";
@@ -106,6 +107,25 @@ struct MapInfoMsg {
   std::string manifest_sha256;  ///< SHA-256 (hex) of the map's manifest.yaml
   TimeMsg created;              ///< map creation time
   bool operator==(const MapInfoMsg&) const = default;
+};
+
+/// radarslam/MapFileChunk: one piece of one file of a map directory (rt/radarslam/map_files;
+/// dds/map_file_publisher.h sends them, dds/map_file_assembler.h checks and reassembles them).
+struct MapFileChunkMsg {
+  HeaderMsg header;                ///< stamp = the publication's (= MapInfo's), frame_id "map"
+  std::string map_name;            ///< = MapInfo.map_name
+  std::uint32_t revision = 0;      ///< = MapInfo.revision
+  std::string manifest_sha256;     ///< SHA-256 (hex) of the manifest.yaml sent
+  std::uint32_t file_count = 0;    ///< files of the publication, manifest.yaml included
+  std::uint32_t total_chunks = 0;  ///< chunks of all files of the publication
+  std::uint32_t file_index = 0;    ///< 0..file_count-1 (manifest.yaml = 0)
+  std::string path;                ///< relative to the map directory
+  std::uint64_t file_size = 0;
+  std::string file_sha256;  ///< SHA-256 (hex) of the whole file
+  std::uint32_t chunk_index = 0, chunk_count = 0;
+  std::uint64_t offset = 0;  ///< of `data` in the file
+  std::vector<std::uint8_t> data;
+  bool operator==(const MapFileChunkMsg&) const = default;
 };
 
 /// radarslam/LocalizationStatus: the localiser's integrity status of one scan.

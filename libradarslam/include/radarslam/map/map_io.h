@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "radarslam/map/keyframe_map.h"
 #include "radarslam/map/map_layers.h"
@@ -55,6 +56,17 @@ struct MapManifestSummary {
 };
 /// Reads `dir`/manifest.yaml only. Throws InputError naming it if it is missing or malformed.
 MapManifestSummary readMapManifest(const std::filesystem::path& dir);
+
+/// One file a manifest lists: path relative to the map directory, size, SHA-256 (hex).
+struct MapFileEntry {
+  std::string name;
+  std::uint64_t bytes = 0;
+  std::string sha256;
+};
+/// The files `dir`/manifest.yaml lists: the map's own (`files:`, what loadMap reads) and, with
+/// `with_layers`, the layer files (`layers.files`, format 2; none if the map has no layers).
+/// Reads the manifest only. Throws InputError naming it if it is missing or an entry is malformed.
+std::vector<MapFileEntry> listMapFiles(const std::filesystem::path& dir, bool with_layers);
 
 /// Reads and verifies a map directory. If `dir` is missing but its `.NAME.map-backup` is complete
 /// (a save was interrupted between the two renames) the backup is moved back and loaded.
