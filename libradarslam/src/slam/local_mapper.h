@@ -2,8 +2,9 @@
 // Local mapping (paper Sec. III-B) for one new keyframe: its peak cloud (Algorithm 1, motion
 // compensated) and M2DP descriptor for loop closing, map points from the tracker's measurements
 // (each of the previous keyframe's keypoints the tracker measured in the new keyframe becomes
-// another observation of that keypoint's map point, at the measured position), local bundle adjustment over the newest keyframes, and culling of map points seen
-// by too few keyframes once they leave the window.
+// another observation of that keypoint's map point, at the measured position), local bundle
+// adjustment over the newest keyframes, and culling of map points seen by too few keyframes once
+// they leave the window.
 #include <memory>
 #include <utility>
 #include <vector>
