@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "radarslam/map/map_io.h"
 #include "simulated_dataset.h"
 #include "temp_dir.h"
 
@@ -193,6 +194,72 @@ TEST_F(LocalizeIntegrity, DriveOutOfTheMapAndBack) { driveOutOfTheMapAndBack("ga
 
 TEST_F(LocalizeIntegrity, DriveOutOfTheMapAndBackWithAdaptiveOdometryRadius) {
   driveOutOfTheMapAndBack("gap_adaptive", true);
+}
+
+/// The map holds the street of traversal 1's keyframes 15-44 (of 59) twice: the second copy (new keyframes,
+/// their own odometry edges, no edge to the first: a revisit the SLAM run did not merge) moved
+/// rigidly by 1.5 m / 1.0 m / 1.5 deg, with stamps outside the truth (the map frame is fitted to the
+/// first copy only). Traversal 2 enters the street from the part of the map that exists once: it
+/// must stay on that copy (every trusted pose within 1 m / 1 deg of the truth) and report the
+/// ambiguity. RADARSLAM_TEST_NO_COPIES=1 (submap.max_path_m 0: every keyframe near) shows what
+/// happens without telling the copies apart.
+TEST_F(LocalizeIntegrity, MapWithTheSameStreetTwiceIsTrackedOnOneCopyAndReported) {
+  const fs::path d = tmp_->path();
+  ASSERT_TRUE(runs("map-synth '" + t1_->string() + "' -o '" + (d / "map").string() + "'", d));
+  KeyframeMap map = loadMap(d / "map");
+  const std::size_t first = 15, last = 45, n = map.keyframes.size();
+  ASSERT_GT(n, last);
+  // The drift of an unmerged revisit: 1.8 m and 1.5 deg.
+  const double kShiftX = 1.5, kShiftY = 1.0, dphi = 1.5 * M_PI / 180, c = std::cos(dphi), s = std::sin(dphi);
+  const auto& centre = map.keyframes[30].pose;
+  std::uint64_t next_id = map.keyframes.back().id + 1;
+  const StampNs later = map.keyframes.back().stamp_ns + 3600'000'000'000LL;
+  for (std::size_t k = first; k < last; ++k) {
+    Keyframe copy = map.keyframes[k];
+    const double x = copy.pose.x - centre.x, y = copy.pose.y - centre.y;
+    copy.pose = {centre.x + c * x - s * y + kShiftX, centre.y + s * x + c * y + kShiftY,
+                 copy.pose.phi + dphi};
+    copy.id = next_id++;
+    copy.stamp_ns = later + static_cast<StampNs>(k) * 250'000'000LL;
+    if (k > first) {
+      PoseGraphEdge e;
+      e.from = copy.id - 1;
+      e.to = copy.id;
+      const auto& a = map.keyframes[k - 1].pose;
+      const auto& b = map.keyframes[k].pose;
+      const double ca = std::cos(a.phi), sa = std::sin(a.phi);
+      e.relative = {ca * (b.x - a.x) + sa * (b.y - a.y), -sa * (b.x - a.x) + ca * (b.y - a.y),
+                    std::remainder(b.phi - a.phi, 2 * M_PI)};
+      e.information = {1e2, 0, 0, 0, 1e2, 0, 0, 0, 1e4};
+      map.edges.push_back(e);
+    }
+    map.keyframes.push_back(std::move(copy));
+  }
+  saveMap(map, d / "map_twice");
+
+  const fs::path config = d / "twice.yaml";
+  {
+    std::string loc = slurp(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "localization.yaml");
+    if (std::getenv("RADARSLAM_TEST_NO_COPIES")) {
+      const auto at = loc.find("max_path_m: ");
+      ASSERT_NE(at, std::string::npos);
+      loc.replace(at, loc.find('\n', at) - at, "max_path_m: 0");
+    }
+    std::ofstream(config) << slurp(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml") << loc;
+  }
+  std::vector<std::vector<std::string>> errors, side;
+  localize(d / "map_twice", *t2_, "twice", kScans, errors, side, config.string());
+  std::size_t trusted_scans = 0;
+  for (const auto& r : errors) {
+    if (!trusted(r[2])) continue;
+    ++trusted_scans;
+    EXPECT_LE(std::stod(r[3]), 1.0) << "scan " << r[1] << " " << r[2] << " (the other copy?)";
+    EXPECT_LE(std::stod(r[4]), 1.0) << "scan " << r[1] << " " << r[2];
+  }
+  EXPECT_GE(trusted_scans, kScans * 8 / 10);
+  std::size_t ambiguous = 0;
+  for (const auto& r : side) ambiguous += r.back() == "ambiguous";
+  EXPECT_GE(ambiguous, 10u) << "the second copy was never reported";
 }
 
 }  // namespace

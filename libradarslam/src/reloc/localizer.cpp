@@ -110,6 +110,7 @@ struct Localizer::Impl {
     long anchor = -1;  ///< the map keyframe of the last trusted registration
   };
   long trusted_keyframe = -1;  ///< nearest map keyframe of the last tracking / global_fix pose
+  long anchor = -1;            ///< keyframe of the map copy being tracked (MapTracker::track)
   std::optional<Prior> prior;
   StampNs last_stamp = 0;
   Impl(const KeyframeMap& map_in, const OdometryParams& op, const LocalizerParams& p)
@@ -133,6 +134,7 @@ struct Localizer::Impl {
   }
   void loseTrack() {
     have_pose = false;
+    anchor = -1;
     lost_scans = 0;
     fits.clear();
     window.clear();
@@ -167,7 +169,8 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
   if (m.params.motion_compensation) compensateMotion(cloud, scan, step.velocity);
   res.timing.cloud = cloud_ms + msSince(t0);
 
-  auto report = [&](const mrpt::math::TPose2D& pose, const Eigen::Matrix3d& cov, LocalizationStatus status) {
+  auto report = [&](const mrpt::math::TPose2D& pose, const Eigen::Matrix3d& cov, LocalizationStatus status,
+                    long keyframe = -1) {
     m.pose = pose;
     m.cov = cov;
     m.have_pose = true;
@@ -175,13 +178,14 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     res.pose = pose;
     res.covariance = cov;
     res.status = status;
-    res.keyframe = nearestKeyframe(m.map, pose);
+    res.keyframe = keyframe >= 0 ? keyframe : nearestKeyframe(m.map, pose);
     if (status == LocalizationStatus::Tracking || status == LocalizationStatus::GlobalFix)
       m.trusted_keyframe = res.keyframe;
   };
   auto accept = [&](const TrackResult& tr, LocalizationStatus status) {
     m.missed = 0;
-    report(tr.icp.pose, tr.icp.covariance, status);
+    m.anchor = tr.anchor;
+    report(tr.icp.pose, tr.icp.covariance, status, tr.anchor);
     res.fit_score = tr.icp.fit_score;
     res.inliers = tr.icp.inliers;
   };
@@ -190,7 +194,7 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
   if (m.have_pose && !ip.enabled) {  // the tracker's own tests only (before issue #14)
     t0 = Clock::now();
     const mrpt::math::TPose2D predicted = compose(m.pose, step.motion);
-    const TrackResult tr = m.tracker.track(cloud, predicted);
+    const TrackResult tr = m.tracker.track(cloud, predicted, m.anchor);
     res.timing.tracking = msSince(t0);
     if (tr.accepted) {
       accept(tr, LocalizationStatus::Tracking);
@@ -213,7 +217,7 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     const mrpt::math::TPose2D predicted = compose(m.pose, step.motion);
     const Eigen::Matrix3d predicted_cov = composeCovariance(m.pose, m.cov, step.motion, odo_cov);
     m.window.addMotion(step.motion, odo_cov);
-    const TrackResult tr = m.tracker.track(cloud, predicted);
+    const TrackResult tr = m.tracker.track(cloud, predicted, m.anchor);
     res.fit_score = tr.icp.fit_score;
     res.inliers = tr.icp.inliers;
     const IcpResult& r = tr.icp;
@@ -236,10 +240,15 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
         mrpt::math::TPose2D fused;
         Eigen::Matrix3d fused_cov;
         fusePoses(predicted, predicted_cov, r.pose, r.covariance, fused, fused_cov);
-        report(fused, fused_cov, LocalizationStatus::Degraded);
+        report(fused, fused_cov, LocalizationStatus::Degraded, tr.anchor);
         res.check = "degenerate";
       } else {
-        report(r.pose, r.covariance, LocalizationStatus::Tracking);
+        report(r.pose, r.covariance, LocalizationStatus::Tracking, tr.anchor);
+      }
+      m.anchor = tr.anchor;
+      if (tr.ambiguous) {
+        res.ambiguous = true;
+        if (res.check.empty()) res.check = "ambiguous";
       }
       m.window.addPose(true, res.pose, res.covariance);
     } else {
@@ -273,7 +282,7 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
   std::optional<TrackResult> refined;
   if (fix.found) {
     // Refine and check the fix against the local submap (same tests as tracking).
-    TrackResult tr = m.tracker.track(cloud, fix.pose);
+    TrackResult tr = m.tracker.track(cloud, fix.pose, static_cast<long>(fix.keyframe));
     // A fix the dead-reckoned pose rules out (chi^2 of the difference under both covariances) is a
     // look-alike place, however well it verifies (docs/localization.md, "Global fixes").
     // The map is not exact either: where the fix lies in another part of the map than the prior's

@@ -2,6 +2,7 @@
 #include "radarslam/reloc/map_tracker.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -18,19 +19,46 @@ void loadParams(const YamlParams& yaml, MapTrackerParams& p) {
   yaml.get("max_jump_m", p.max_jump_m, Range::above(0, 1000));
   yaml.get("max_jump_deg", p.max_jump_deg, Range::above(0, 180));
   yaml.get("max_position_sigma_m", p.max_position_sigma_m, Range::above(0, 1000));
+  yaml.get("ambiguity_fit_ratio", p.ambiguity_fit_ratio, Range::closed(0, 1));
   p.min_inliers = static_cast<std::size_t>(min_inliers);
   loadParams(yaml.section("submap"), p.submap);
   loadParams(yaml.section("icp"), p.icp);
 }
 
-MapTracker::MapTracker(const KeyframeMap& map, const MapTrackerParams& params) : map_(map), params_(params) {}
+MapTracker::MapTracker(const KeyframeMap& map, const MapTrackerParams& params)
+    : map_(map), params_(params), connectivity_(map) {}
 MapTracker::~MapTracker() = default;
 
-TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::math::TPose2D& predicted) {
-  TrackResult out;
-  if (!submap_ || std::hypot(predicted.x - submap_->centreX(), predicted.y - submap_->centreY()) >
-                      params_.submap.rebuild_distance_m) {
+void MapTracker::rebuild(const mrpt::math::TPose2D& predicted, long anchor) {
+  built_for_anchor_ = anchor;
+  other_.reset();
+  if (anchor < 0 || params_.submap.max_path_m <= 0) {
     submap_ = LocalSubmap::build(map_, predicted.x, predicted.y, params_.submap);
+    return;
+  }
+  std::vector<char> copy = connectivity_.within(static_cast<std::size_t>(anchor), params_.submap.max_path_m);
+  submap_ = LocalSubmap::build(map_, predicted.x, predicted.y, params_.submap, &copy);
+  for (char& c : copy) c = !c;
+  LocalSubmap other = LocalSubmap::build(map_, predicted.x, predicted.y, params_.submap, &copy);
+  if (other.keyframes() > 0) other_ = std::move(other);
+}
+
+TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::math::TPose2D& predicted,
+                              long anchor) {
+  TrackResult out;
+  // Rebuilt when the prediction moved far enough, or when asked to track another copy (an anchor
+  // the current submap does not hold, e.g. after a new global fix).
+  auto sameCopy = [&] {
+    if (anchor == built_for_anchor_) return true;
+    if (anchor < 0 || built_for_anchor_ < 0) return false;
+    const auto& ids = submap_->keyframeIndices();
+    return std::binary_search(ids.begin(), ids.end(), static_cast<std::size_t>(anchor));
+  };
+  if (!submap_ ||
+      std::hypot(predicted.x - submap_->centreX(), predicted.y - submap_->centreY()) >
+          params_.submap.rebuild_distance_m ||
+      !sameCopy()) {
+    rebuild(predicted, anchor);
     out.submap_rebuilt = true;
   }
   if (submap_->keyframes() == 0) {
@@ -39,6 +67,21 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
   }
   out.icp = submap_->registerScan(cloud, predicted, params_.icp);
   const IcpResult& r = out.icp;
+  double best_d2 = 0;
+  for (const std::size_t k : submap_->keyframeIndices()) {
+    const auto& p = map_.keyframes[k].pose;
+    const double d2 = (p.x - r.pose.x) * (p.x - r.pose.x) + (p.y - r.pose.y) * (p.y - r.pose.y);
+    if (out.anchor < 0 || d2 < best_d2) out.anchor = static_cast<long>(k), best_d2 = d2;
+  }
+  if (other_) {  // a second copy of this place: does it explain the scan elsewhere as well?
+    out.alternative = other_->registerScan(cloud, predicted, params_.icp);
+    const IcpResult& a = out.alternative;
+    const double apart = std::hypot(a.pose.x - r.pose.x, a.pose.y - r.pose.y);
+    const double apart_deg = std::abs(std::remainder(a.pose.phi - r.pose.phi, 2 * M_PI)) * 180.0 / M_PI;
+    out.ambiguous = a.inliers >= params_.min_inliers &&
+                    a.fit_score >= params_.ambiguity_fit_ratio * r.fit_score &&
+                    (apart > params_.icp.inlier_distance_m || apart_deg > 1.0);
+  }
   const double jump = std::hypot(r.pose.x - predicted.x, r.pose.y - predicted.y);
   const double jump_deg = std::abs(std::remainder(r.pose.phi - predicted.phi, 2 * M_PI)) * 180.0 / M_PI;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(r.covariance.topLeftCorner<2, 2>());

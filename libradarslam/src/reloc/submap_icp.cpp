@@ -18,6 +18,7 @@ void loadParams(const YamlParams& yaml, SubmapParams& p) {
   yaml.get("voxel_m", p.voxel_m, Range::closed(0.01, 100));
   yaml.get("max_point_range_m", p.max_point_range_m, Range::closed(0, 10000.0));
   yaml.get("rebuild_distance_m", p.rebuild_distance_m, Range::closed(0, 10000.0));
+  yaml.get("max_path_m", p.max_path_m, Range::closed(0, 1000000.0));
 }
 
 void loadParams(const YamlParams& yaml, IcpParams& p) {
@@ -147,15 +148,17 @@ LocalSubmap& LocalSubmap::operator=(LocalSubmap&&) noexcept = default;
 
 std::size_t LocalSubmap::size() const { return impl_ ? impl_->index.size() : 0; }
 
-LocalSubmap LocalSubmap::build(const KeyframeMap& map, double cx, double cy, const SubmapParams& params) {
+LocalSubmap LocalSubmap::build(const KeyframeMap& map, double cx, double cy, const SubmapParams& params,
+                               const std::vector<char>* allowed) {
   std::vector<Vec2> pts;
-  std::size_t used = 0;
+  std::vector<std::size_t> used;
   const double r2 = params.radius_m * params.radius_m;
   const double range2 = params.max_point_range_m * params.max_point_range_m;
-  for (const auto& kf : map.keyframes) {
+  for (std::size_t k = 0; k < map.keyframes.size(); ++k) {
+    const Keyframe& kf = map.keyframes[k];
     const double dx = kf.pose.x - cx, dy = kf.pose.y - cy;
-    if (dx * dx + dy * dy > r2) continue;
-    ++used;
+    if (dx * dx + dy * dy > r2 || (allowed && (k >= allowed->size() || !(*allowed)[k]))) continue;
+    used.push_back(k);
     const double c = std::cos(kf.pose.phi), s = std::sin(kf.pose.phi);
     for (const auto& p : kf.points) {
       if (range2 > 0 && double(p.x) * p.x + double(p.y) * p.y > range2) continue;
@@ -163,7 +166,7 @@ LocalSubmap LocalSubmap::build(const KeyframeMap& map, double cx, double cy, con
     }
   }
   LocalSubmap m = fromPoints(std::move(pts), params.voxel_m);
-  m.keyframes_ = used;
+  m.keyframe_indices_ = std::move(used);
   m.cx_ = cx;
   m.cy_ = cy;
   return m;

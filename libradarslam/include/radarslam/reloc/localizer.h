@@ -88,8 +88,13 @@ struct LocalizationResult {
   double fit_score = 0;                                  ///< inlier ratio of the registration
   std::size_t inliers = 0;
   LocalizationStatus status = LocalizationStatus::Lost;
-  long keyframe = -1;  ///< index in map.keyframes of the keyframe nearest the pose (if localised)
-  std::string check;   ///< the integrity check that failed (empty if none)
+  /// Index in map.keyframes of the keyframe nearest the pose (if localised), on the copy of the
+  /// place being tracked when the map holds two (MapTracker).
+  long keyframe = -1;
+  std::string check;  ///< the integrity check that failed (empty if none), or "ambiguous"
+  /// A second copy of this place in the map (a revisit the map did not merge) explains the scan
+  /// elsewhere almost as well; the localiser stays with the copy it tracks (docs/localization.md).
+  bool ambiguous = false;
   LocalizationTiming timing;
 };
 

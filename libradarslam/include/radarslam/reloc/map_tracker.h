@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 
+#include "radarslam/reloc/map_connectivity.h"
 #include "radarslam/reloc/submap_icp.h"
 
 namespace radarslam {
@@ -25,6 +26,10 @@ struct MapTrackerParams {
   double max_jump_deg = 8.0;     ///< valid (0, 180]
   double max_position_sigma_m =
       1.0;  ///< sqrt of the largest eigenvalue of the xy covariance; valid (0, 1000]
+  /// The map's other copy of the place (submap.max_path_m) aligns the scan elsewhere with at least
+  /// this fraction of the tracked alignment's fit score: reported as ambiguous; valid [0, 1]
+  /// (1 = only an equally good second copy; 0 = any alignment of the other copy).
+  double ambiguity_fit_ratio = 0.8;
 };
 
 /// Overrides from min_fit_score, min_inliers, max_rms_m, max_jump_m, max_jump_deg,
@@ -39,6 +44,13 @@ struct TrackResult {
   bool degenerate = false;
   IcpResult icp;
   bool submap_rebuilt = false;
+  /// The tracked copy's keyframe nearest to the registered pose (position in map.keyframes): the
+  /// next scan's anchor; -1 without a submap.
+  long anchor = -1;
+  /// A second copy of this place in the map (submap.max_path_m) also explains the scan, at
+  /// `alternative`, at least ambiguity_fit_ratio as well: reported, the tracked copy kept.
+  bool ambiguous = false;
+  IcpResult alternative;
 };
 
 class MapTracker {
@@ -47,15 +59,23 @@ class MapTracker {
   MapTracker(const KeyframeMap& map, const MapTrackerParams& params = {});
   ~MapTracker();
 
-  /// Registers `cloud` (sensor frame, motion compensated) near `predicted` (map frame).
-  TrackResult track(std::span<const RadarPoint> cloud, const mrpt::math::TPose2D& predicted);
+  /// Registers `cloud` (sensor frame, motion compensated) near `predicted` (map frame), against
+  /// the keyframes within submap.max_path_m of keyframe `anchor` along the map's graph (the copy
+  /// being tracked: a global fix's keyframe, then each result's `anchor`); -1 = every keyframe near.
+  TrackResult track(std::span<const RadarPoint> cloud, const mrpt::math::TPose2D& predicted,
+                    long anchor = -1);
 
   const MapTrackerParams& params() const { return params_; }
 
  private:
+  void rebuild(const mrpt::math::TPose2D& predicted, long anchor);
+
   const KeyframeMap& map_;
   MapTrackerParams params_;
+  MapConnectivity connectivity_;
   std::optional<LocalSubmap> submap_;
+  std::optional<LocalSubmap> other_;  ///< keyframes near but beyond max_path_m: another copy
+  long built_for_anchor_ = -1;
 };
 
 }  // namespace radarslam

@@ -33,6 +33,12 @@ struct SubmapParams {
       0;  ///< keyframe points farther from their sensor are dropped (0 = all); valid [0, 10000]
   double rebuild_distance_m =
       15;  ///< a tracker rebuilds when the prediction moves this far; valid [0, 10000]
+  /// A tracker uses only keyframes within this path distance (through the map's odometry and loop
+  /// edges, reloc/map_connectivity.h) of the keyframe it is tracking: one copy of a street the map
+  /// holds twice; keyframes nearby but farther along the graph are a second copy, registered only
+  /// to report the ambiguity. 0 = every keyframe within radius_m (no copies told apart).
+  /// valid [0, 1000000]
+  double max_path_m = 400;
 };
 
 struct IcpParams {
@@ -77,13 +83,17 @@ class LocalSubmap {
   LocalSubmap(LocalSubmap&&) noexcept;
   LocalSubmap& operator=(LocalSubmap&&) noexcept;
 
-  /// Keyframes of `map` within params.radius_m of (cx, cy).
-  static LocalSubmap build(const KeyframeMap& map, double cx, double cy, const SubmapParams& params);
+  /// Keyframes of `map` within params.radius_m of (cx, cy); with `allowed`, only those whose
+  /// entry (by position in map.keyframes) is non-zero.
+  static LocalSubmap build(const KeyframeMap& map, double cx, double cy, const SubmapParams& params,
+                           const std::vector<char>* allowed = nullptr);
   /// Every keyframe's points (tests, small maps).
   static LocalSubmap fromPoints(std::vector<Eigen::Vector2d> map_points, double voxel_m);
 
   std::size_t size() const;
-  std::size_t keyframes() const { return keyframes_; }
+  std::size_t keyframes() const { return keyframe_indices_.size(); }
+  /// Positions in map.keyframes of the keyframes it holds (ascending).
+  const std::vector<std::size_t>& keyframeIndices() const { return keyframe_indices_; }
   double centreX() const { return cx_; }
   double centreY() const { return cy_; }
 
@@ -94,7 +104,7 @@ class LocalSubmap {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  std::size_t keyframes_ = 0;
+  std::vector<std::size_t> keyframe_indices_;
   double cx_ = 0, cy_ = 0;
 };
 

@@ -1,0 +1,56 @@
+// The keyframe graph that tells two copies of a street apart (reloc/map_connectivity.h).
+#include <gtest/gtest.h>
+
+#include "radarslam/reloc/map_connectivity.h"
+
+namespace radarslam {
+namespace {
+
+/// Keyframes (ids 10, 11, ...) every 10 m along x.
+KeyframeMap chain(std::size_t n) {
+  KeyframeMap map;
+  for (std::size_t k = 0; k < n; ++k) {
+    Keyframe kf;
+    kf.id = 10 + k;
+    kf.pose = {10.0 * static_cast<double>(k), 0, 0};
+    map.keyframes.push_back(kf);
+  }
+  return map;
+}
+
+PoseGraphEdge edge(std::uint64_t from, std::uint64_t to, double length, EdgeKind kind = EdgeKind::Odometry) {
+  PoseGraphEdge e;
+  e.from = from;
+  e.to = to;
+  e.relative = {length, 0, 0};
+  e.kind = kind;
+  return e;
+}
+
+TEST(MapConnectivity, PathDistanceFollowsOdometryAndLoopEdges) {
+  KeyframeMap map = chain(5);
+  for (std::uint64_t k = 10; k < 14; ++k) map.edges.push_back(edge(k, k + 1, 10));
+  const MapConnectivity g(map);
+  EXPECT_EQ(g.within(0, 15), (std::vector<char>{1, 1, 0, 0, 0}));
+  EXPECT_EQ(g.within(2, 10), (std::vector<char>{0, 1, 1, 1, 0}));
+  // A loop edge (a merged revisit) brings the far end close.
+  map.edges.push_back(edge(14, 10, 1, EdgeKind::Loop));
+  EXPECT_EQ(MapConnectivity(map).within(0, 15), (std::vector<char>{1, 1, 0, 1, 1}));
+}
+
+TEST(MapConnectivity, UnconnectedCopyIsNeverWithinReach) {
+  KeyframeMap map = chain(6);  // 0-2 one copy, 3-5 another, no edge between them
+  map.edges = {edge(10, 11, 10), edge(11, 12, 10), edge(13, 14, 10), edge(14, 15, 10)};
+  map.edges.push_back(edge(10, 99, 1));  // an edge to an unknown id is ignored
+  EXPECT_EQ(MapConnectivity(map).within(1, 1e9), (std::vector<char>{1, 1, 1, 0, 0, 0}));
+}
+
+TEST(MapConnectivity, MapWithoutEdgesIsOneChainAndBadStartMeansEverything) {
+  const KeyframeMap map = chain(4);
+  const MapConnectivity g(map);
+  EXPECT_EQ(g.within(3, 20), (std::vector<char>{0, 1, 1, 1}));
+  EXPECT_EQ(g.within(7, 0), (std::vector<char>{1, 1, 1, 1}));
+}
+
+}  // namespace
+}  // namespace radarslam
