@@ -114,6 +114,11 @@ int runLocalize(int argc, char** argv) {
       "", "map-timeout",
       "MAP = dds:, seconds to wait for a complete map (error and exit 1 when none arrived)", false, 30.0, "S",
       cmd.tclap());
+  TCLAP::ValueArg<double> map_max_mb_arg(
+      "", "map-max-mb",
+      "MAP = dds:, refuse a map whose files add up to more than this many MiB (a hostile publisher on the "
+      "domain must not fill the disk); valid (0, 1048576]",
+      false, 4096, "MB", cmd.tclap());
   TCLAP::ValueArg<unsigned> wait_subs_arg("", "wait-subscribers",
                                           "With --publish: wait for N pose subscribers before the first scan",
                                           false, 0, "N", cmd.tclap());
@@ -146,6 +151,8 @@ int runLocalize(int argc, char** argv) {
   if (!from_dds && !fs::exists(dir)) throw InputError(dir.string(), "no such file or directory");
   const std::optional<std::uint32_t> map_domain = ddsMapDomain(map_arg.getValue(), domain_arg.getValue());
   if (map_domain && !(map_timeout_arg.getValue() > 0)) throw InputError(where, "--map-timeout must be > 0");
+  if (!(map_max_mb_arg.getValue() > 0 && map_max_mb_arg.getValue() <= 1048576))
+    throw InputError(where, "--map-max-mb must be in (0, 1048576]");
   fs::path map_dir = map_domain ? fs::path() : resolveMapPath(map_arg.getValue());
   if (!map_domain) checkNoOverlap(map_dir, out);
   if (!from_dds) checkNoOverlap(dir, out);
@@ -176,7 +183,9 @@ int runLocalize(int argc, char** argv) {
   std::unique_ptr<FetchedMap> fetched;
   if (map_domain) {
     fetched = std::make_unique<FetchedMap>(
-        map_arg.getValue(), MapFetchOptions{*map_domain, dds_opts.config_file, map_timeout_arg.getValue()});
+        map_arg.getValue(),
+        MapFetchOptions{*map_domain, dds_opts.config_file, map_timeout_arg.getValue(),
+                        static_cast<std::uint64_t>(map_max_mb_arg.getValue() * 1048576.0)});
     map_dir = fetched->dir();
     const auto& r = fetched->received();
     char buf[256];

@@ -47,7 +47,7 @@ FetchedMap::FetchedMap(const std::string& source, const MapFetchOptions& options
   }
   try {
     dds::Domain domain(options.domain_id, xml);
-    received_ = dds::receiveMapFiles(domain, dir_, {options.timeout_s}, source);
+    received_ = dds::receiveMapFiles(domain, dir_, {options.timeout_s, options.max_bytes}, source);
   } catch (...) {
     remove();
     throw;

@@ -20,8 +20,9 @@ std::optional<std::uint32_t> ddsMapDomain(const std::string& map, std::uint32_t 
 
 struct MapFetchOptions {
   std::uint32_t domain_id = 0;
-  std::string config_file;  ///< --dds-config (empty: built-in loopback XML)
-  double timeout_s = 30.0;  ///< --map-timeout
+  std::string config_file;                           ///< --dds-config (empty: built-in loopback XML)
+  double timeout_s = 30.0;                           ///< --map-timeout
+  std::uint64_t max_bytes = std::uint64_t{4} << 30;  ///< --map-max-mb
 };
 
 /// A map received over DDS into a fresh private directory (mode 0700 under $TMPDIR); the

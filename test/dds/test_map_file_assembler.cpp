@@ -147,6 +147,40 @@ TEST(MapFileAssembler, RejectsAWrongChecksum) {
   EXPECT_NE(error.find("keyframes.bin: SHA-256 mismatch"), std::string::npos) << error;
 }
 
+// A publisher stating huge files must not make the receiver write without bound: the stated sizes
+// are summed as files appear and checked against the limit before anything of that file is written.
+TEST(MapFileAssembler, RefusesAPublicationLargerThanTheLimit) {
+  Fixture f;
+  const auto chunks = f.chunks(1);
+  std::uint64_t total = 0;
+  for (const auto& c : chunks)
+    if (c.chunk_index == 0) total += c.file_size;
+  {
+    dds::MapFileAssembler exact(f.out, "dds:", total);
+    bool done = false;
+    for (const auto& c : chunks) done = exact.add(c);
+    EXPECT_TRUE(done);
+  }
+  for (const auto& e : fs::directory_iterator(f.out)) fs::remove_all(e.path());
+  dds::MapFileAssembler a(f.out, "dds:", total - 1);
+  std::string error;
+  try {
+    for (const auto& c : chunks) a.add(c);
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find("exceed the limit"), std::string::npos) << error;
+  EXPECT_FALSE(a.complete());
+  // A stated 2^60-byte file is refused outright.
+  auto huge = f.chunks(1);
+  huge[firstOf(huge, "keyframes.bin")].file_size = std::uint64_t{1} << 60;
+  huge[firstOf(huge, "keyframes.bin")].chunk_count = 1u << 20;
+  const auto [huge_error, done] = f.feed(huge);
+  EXPECT_FALSE(done);
+  EXPECT_FALSE(huge_error.empty());
+  EXPECT_TRUE(f.nothingEscaped());
+}
+
 TEST(MapFileAssembler, RejectsAFileThatDiffersFromTheManifest) {
   // Self-consistent chunks (SHA-256 of what is sent) of a file the manifest describes otherwise.
   Fixture f;

@@ -60,8 +60,8 @@ std::string mapFilePathProblem(const std::string& path) {
   return {};
 }
 
-MapFileAssembler::MapFileAssembler(fs::path dir, std::string source)
-    : dir_(std::move(dir)), source_(std::move(source)) {}
+MapFileAssembler::MapFileAssembler(fs::path dir, std::string source, std::uint64_t max_bytes)
+    : dir_(std::move(dir)), source_(std::move(source)), max_bytes_(max_bytes) {}
 
 void MapFileAssembler::fail(const std::string& problem) const { throw InputError(source_, problem); }
 
@@ -83,6 +83,7 @@ void MapFileAssembler::reset(const MapFileChunkMsg& first) {
   complete_ = false;
   chunks_ = 0;
   bytes_ = 0;
+  stated_bytes_ = 0;
   pub_ = first;
   pub_.data.clear();
   stamp_ = fromTimeMsg(first.header.stamp);
@@ -145,6 +146,10 @@ bool MapFileAssembler::add(const MapFileChunkMsg& c) {
         fail(path + ": file index " + std::to_string(c.file_index) + " also used by " + other);
     if (files_.size() >= pub_.file_count)
       fail(path + ": more files than the publication's " + std::to_string(pub_.file_count));
+    if (c.file_size > max_bytes_ - stated_bytes_)
+      fail(path + ": the map's files exceed the limit of " + std::to_string(max_bytes_ >> 20) +
+           " MiB (--map-max-mb)");
+    stated_bytes_ += c.file_size;
     FileState f;
     f.index = c.file_index;
     f.size = c.file_size;

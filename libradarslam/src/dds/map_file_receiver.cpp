@@ -18,7 +18,7 @@ ReceivedMapFiles receiveMapFiles(Domain& domain, const std::filesystem::path& di
   const auto deadline =
       t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(params.timeout_s));
   Subscription<MapFileChunkMsg> sub(domain, kMapFilesTopic, TopicQos::latchedAll());
-  MapFileAssembler assembler(dir, source);
+  MapFileAssembler assembler(dir, source, params.max_bytes);
   for (;;) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
     auto chunk = left.count() > 0 ? sub.take(left) : std::nullopt;

@@ -23,8 +23,10 @@ std::string mapFilePathProblem(const std::string& path);
 class MapFileAssembler {
  public:
   /// `dir`: an existing directory private to the caller (files are created only inside it);
-  /// `source`: names the input in errors (InputError(source, problem)).
-  MapFileAssembler(std::filesystem::path dir, std::string source);
+  /// `source`: names the input in errors (InputError(source, problem)); `max_bytes`: a publication
+  /// whose files (their stated sizes, summed as they appear) exceed it is refused.
+  MapFileAssembler(std::filesystem::path dir, std::string source,
+                   std::uint64_t max_bytes = std::uint64_t{4} << 30);
 
   /// Takes one chunk. Chunks of an older publication than the one being assembled (lower revision,
   /// or equal revision and older stamp) are ignored; one of a newer publication discards the files
@@ -67,6 +69,8 @@ class MapFileAssembler {
   bool manifest_read_ = false;
   std::size_t chunks_ = 0, ignored_ = 0;
   std::uint64_t bytes_ = 0;
+  std::uint64_t max_bytes_;
+  std::uint64_t stated_bytes_ = 0;  ///< sum of the stated sizes of the files seen
 };
 
 }  // namespace radarslam::dds

@@ -12,6 +12,9 @@ class Domain;
 
 struct MapReceiveParams {
   double timeout_s = 30.0;  ///< give up when no complete map arrived within this time
+  /// A publication whose files add up to more bytes is refused before anything more is written:
+  /// a hostile publisher on the domain must not fill the disk.
+  std::uint64_t max_bytes = std::uint64_t{4} << 30;
 };
 
 struct ReceivedMapFiles {
