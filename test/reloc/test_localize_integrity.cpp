@@ -211,7 +211,7 @@ TEST_F(LocalizeIntegrity, MapWithTheSameStreetTwiceIsTrackedOnOneCopyAndReported
   ASSERT_GT(n, last);
   // The drift of an unmerged revisit: 1.8 m and 1.5 deg.
   const double kShiftX = 1.5, kShiftY = 1.0, dphi = 1.5 * M_PI / 180, c = std::cos(dphi), s = std::sin(dphi);
-  const auto& centre = map.keyframes[30].pose;
+  const mrpt::math::TPose2D centre = map.keyframes[30].pose;  // a copy: push_back below reallocates
   std::uint64_t next_id = map.keyframes.back().id + 1;
   const StampNs later = map.keyframes.back().stamp_ns + 3600'000'000'000LL;
   for (std::size_t k = first; k < last; ++k) {
