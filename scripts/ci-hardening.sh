@@ -58,7 +58,9 @@ t1=$(date +%s)
   #   ...WithAdaptiveOdometryRadius runs the same localiser code paths (the chi^2 gate) here;
   # - CliKillWrite.KilledOverwriteLeavesThePreviousOrTheNewMap (~150 s): kills the program mid-save
   #   to test the file protocol's crash safety; the same save code runs here in the CliMap tests.
-  heavy='^SlamOnSimulation\.|^LocalizeIntegrity\.DriveOutOfTheMapAndBack$|^CliKillWrite\.KilledOverwriteLeavesThePreviousOrTheNewMap$'
+  # - LocalizeCli.InASlamMapTheCompensatedCloudsAreUsedAsStored: an accuracy test (SLAM map of 130
+  #   scans + localisation); its code paths run here in the other LocalizeCli and CliMap tests.
+  heavy='^SlamOnSimulation\.|^LocalizeCli\.InASlamMap|^LocalizeIntegrity\.DriveOutOfTheMapAndBack$|^CliKillWrite\.KilledOverwriteLeavesThePreviousOrTheNewMap$'
   ctest -j"$jobs" --output-on-failure --timeout 1800 -E "$heavy"
 )
 t2=$(date +%s)

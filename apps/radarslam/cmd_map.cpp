@@ -158,6 +158,11 @@ int runMap(int argc, char** argv) {
   if (extend_arg.isSet()) {
     base_dir = resolveMapPath(extend_arg.getValue());
     base = loadMap(base_dir);
+    if (!base->meta.clouds_motion_compensated)
+      throw InputError(
+          (base_dir / "manifest.yaml").string(),
+          "the map's keyframe clouds are raw sweeps (clouds_motion_compensated: false, a map-synth "
+          "map); --extend needs a map built by radarslam map");
   }
   std::cerr << "map: " << toString(reader->kind()) << " (" << reader->sensorName() << "), scans " << first
             << ".." << end - 1 << " of " << reader->size() << ", config " << config_used << ", "

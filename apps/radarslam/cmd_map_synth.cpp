@@ -65,6 +65,7 @@ int runMapSynth(int argc, char** argv) {
   KeyframeMap map;
   map.meta.source_dataset = std::filesystem::absolute(data_arg.getValue()).lexically_normal().string();
   map.meta.software_version = radarslam::versionText();
+  map.meta.clouds_motion_compensated = false;  // raw sweeps: the localiser compensates them
   map.meta.parameters_yaml =
       "map_synth:\n  keyframe_distance_m: " + std::to_string(kp.keyframe_distance_m) +
       "\n  keyframe_angle_rad: " + std::to_string(kp.keyframe_angle_rad) +

@@ -207,6 +207,14 @@ TEST_F(CliMap, BadInputGivesOneLineErrors) {
   expectError("map '" + data(1).string() + "' -o '" + (tmp_ / "m").string() + "' --extend '" +
                   (tmp_ / "nomap").string() + "'",
               "nomap");
+  // A map of raw sweeps (map-synth) cannot be extended: SLAM's clouds are motion compensated.
+  const fs::path synth = tmp_ / "synth";
+  ASSERT_EQ(
+      runCli("map-synth '" + data(1).string() + "' -o '" + synth.string() + "' --every 20", tmp_.path()).code,
+      0);
+  expectError(
+      "map '" + data(1).string() + "' -o '" + (tmp_ / "m").string() + "' --extend '" + synth.string() + "'",
+      "raw sweeps");
   EXPECT_FALSE(fs::exists(tmp_ / "m"));  // nothing half-written
 }
 

@@ -193,6 +193,26 @@ TEST(MapValidation, ABrokenHexTwinIsAnError) {
   expectLoadError(tmp / "m", "manifest.yaml", "source_dataset_hex");
 }
 
+TEST(MapValidation, WhetherTheCloudsAreMotionCompensatedRoundTrips) {
+  radarslam::test::TempDir tmp;
+  KeyframeMap map = radarslam::test::syntheticMap(2, 10);
+  for (const bool compensated : {false, true}) {
+    map.meta.clouds_motion_compensated = compensated;
+    saveMap(map, tmp / "m");
+    EXPECT_EQ(loadMap(tmp / "m").meta.clouds_motion_compensated, compensated);
+  }
+  // A manifest without the key (written before it existed, by radarslam map): compensated.
+  std::string m = readAll(tmp / "m" / "manifest.yaml");
+  const std::string line = "clouds_motion_compensated: true\n";
+  const auto at = m.find(line);
+  ASSERT_NE(at, std::string::npos) << m;
+  writeAll(tmp / "m" / "manifest.yaml", std::string(m).erase(at, line.size()));
+  EXPECT_TRUE(loadMap(tmp / "m").meta.clouds_motion_compensated);
+  writeAll(tmp / "m" / "manifest.yaml",
+           std::string(m).replace(at, line.size(), "clouds_motion_compensated: maybe\n"));
+  expectLoadError(tmp / "m", "manifest.yaml", "clouds_motion_compensated");
+}
+
 TEST(MapValidation, AFifoOrADirectoryInPlaceOfAMapFileIsRefused) {
   radarslam::test::TempDir tmp;
   saveMap(radarslam::test::syntheticMap(2, 10), tmp / "m");

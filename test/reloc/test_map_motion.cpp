@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "radarslam/reloc/localizer.h"
 #include "radarslam/reloc/map_motion.h"
 
 namespace radarslam {
@@ -40,6 +41,19 @@ TEST(RelocMapMotion, RawSweepOfAMovingSensorIsCompensated) {
   EXPECT_EQ(out.keyframes[1].pose.x, map.keyframes[1].pose.x);
   // Zero period: nothing moves.
   EXPECT_EQ(compensateMapMotion(map, 0.0).keyframes, map.keyframes);
+}
+
+TEST(RelocMapMotion, OnlyAMapOfRawCloudsIsCompensated) {
+  KeyframeMap map;
+  LocalizerParams params;
+  params.map_sweep_period_s = 0.25;
+  map.meta.clouds_motion_compensated = false;  // map-synth
+  EXPECT_TRUE(compensatesMap(map, params));
+  map.meta.clouds_motion_compensated = true;  // radarslam map: never compensated twice
+  EXPECT_FALSE(compensatesMap(map, params));
+  map.meta.clouds_motion_compensated = false;
+  params.map_sweep_period_s = 0;
+  EXPECT_FALSE(compensatesMap(map, params));
 }
 
 }  // namespace

@@ -246,7 +246,9 @@ std::string manifestText(const KeyframeMap& map, StampNs created, const std::vec
     << "created_ns: " << created << "\n"
     << "created_utc: " << quoted(utcText(created)) << "\n"
     << stringEntry("software_version", map.meta.software_version)
-    << stringEntry("source_dataset", map.meta.source_dataset) << "sensor:\n"
+    << stringEntry("source_dataset", map.meta.source_dataset)
+    << "clouds_motion_compensated: " << (map.meta.clouds_motion_compensated ? "true" : "false") << "\n"
+    << "sensor:\n"
     << "  num_azimuths: " << map.meta.sensor.num_azimuths << "\n"
     << "  num_bins: " << map.meta.sensor.num_bins << "\n"
     << "  range_resolution_m: " << fmtDouble(map.meta.sensor.range_resolution_m) << "\n"
@@ -487,6 +489,7 @@ KeyframeMap loadMap(const fs::path& dir_in) {
   map.meta.created_ns = static_cast<StampNs>(parseU64(created, mp, "created_ns"));
   readString(manifest, mp, "software_version", map.meta.software_version);
   readString(manifest, mp, "source_dataset", map.meta.source_dataset);
+  manifest.get("clouds_motion_compensated", map.meta.clouds_motion_compensated);
   const YamlParams sensor = manifest.section("sensor");
   sensor.get("num_azimuths", map.meta.sensor.num_azimuths);
   sensor.get("num_bins", map.meta.sensor.num_bins);

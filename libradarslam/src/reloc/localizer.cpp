@@ -83,8 +83,12 @@ Eigen::Matrix3d mapChainCovariance(const KeyframeMap& map, long a, long b, const
 }
 }  // namespace
 
+bool compensatesMap(const KeyframeMap& map, const LocalizerParams& params) {
+  return params.map_sweep_period_s > 0 && !map.meta.clouds_motion_compensated;
+}
+
 struct Localizer::Impl {
-  KeyframeMap compensated;  ///< only with map_sweep_period_s > 0
+  KeyframeMap compensated;  ///< only for a map of raw clouds (compensatesMap)
   const KeyframeMap& map;
   LocalizerParams params;
   RadarOdometry odometry;
@@ -114,9 +118,9 @@ struct Localizer::Impl {
   std::optional<Prior> prior;
   StampNs last_stamp = 0;
   Impl(const KeyframeMap& map_in, const OdometryParams& op, const LocalizerParams& p)
-      : compensated(p.map_sweep_period_s > 0 ? compensateMapMotion(map_in, p.map_sweep_period_s)
-                                             : KeyframeMap{}),
-        map(p.map_sweep_period_s > 0 ? compensated : map_in),
+      : compensated(compensatesMap(map_in, p) ? compensateMapMotion(map_in, p.map_sweep_period_s)
+                                              : KeyframeMap{}),
+        map(compensatesMap(map_in, p) ? compensated : map_in),
         params(p),
         odometry([&] {
           OdometryParams o = op;

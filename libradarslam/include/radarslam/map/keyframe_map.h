@@ -31,6 +31,10 @@ struct MapMetadata {
   StampNs created_ns = 0;        ///< creation time (saveMap fills it in when 0)
   std::string source_dataset;    ///< e.g. the dataset directory the map was built from
   std::string software_version;  ///< radarslam version that built the map
+  /// Keyframe clouds at their scan's reference time (motion compensated, as `radarslam map` writes
+  /// them); false: raw sweeps, each point where the sensor was when it fired (`map-synth`), which a
+  /// localiser compensates itself (reloc/map_motion.h). Manifests without the key: true.
+  bool clouds_motion_compensated = true;
   bool operator==(const MapMetadata&) const = default;
 };
 

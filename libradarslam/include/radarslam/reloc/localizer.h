@@ -42,8 +42,10 @@ struct LocalizerParams {
   /// again (with integrity checks: integrity.max_failures); valid [0, 1000000].
   int max_missed_scans = 3;
   int global_retry_interval = 1;  ///< while lost, try global localisation every N scans; valid [1, 1000000]
-  /// > 0: the map's keyframe clouds are raw (not motion compensated, e.g. map-synth maps) and are
-  /// compensated at start-up assuming this sweep period (reloc/map_motion.h). 0: used as stored.
+  /// A map whose keyframe clouds are raw sweeps (MapMetadata::clouds_motion_compensated false:
+  /// map-synth) is compensated at start-up assuming this sweep period (reloc/map_motion.h); 0: used
+  /// as stored. Maps of compensated clouds (radarslam map) are always used as stored: compensating
+  /// them again moved every point by twice its motion (docs/localization.md).
   double map_sweep_period_s = 0;  ///< valid [0, 1000000]
   /// A global fix is reported only when this many consecutive scans gave fixes that agree through
   /// the odometry (perceptual aliasing: similar streets verify now and then; measured in
@@ -98,9 +100,13 @@ struct LocalizationResult {
   LocalizationTiming timing;
 };
 
+/// Whether a Localizer compensates `map`'s keyframe clouds for the sensor's motion during the sweep:
+/// only raw clouds (MapMetadata::clouds_motion_compensated false) with map_sweep_period_s > 0.
+bool compensatesMap(const KeyframeMap& map, const LocalizerParams& params);
+
 class Localizer {
  public:
-  /// Keeps a reference to `map` (must outlive this) unless map_sweep_period_s > 0 (then a
+  /// Keeps a reference to `map` (must outlive this) unless compensatesMap(map, params) (then a
   /// compensated copy).
   Localizer(const KeyframeMap& map, const OdometryParams& odometry, const LocalizerParams& params = {});
   ~Localizer();
