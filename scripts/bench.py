@@ -9,7 +9,8 @@ list of simulated sequences in config/bench/sequences.yaml, split into train and
 `--reduced --check --baseline config/bench/baseline_reduced.json`. Every run reports (as
 "VIOLATION" lines) what must always hold and does not yet: SLAM's KITTI errors no worse than its
 own odometry's, no false loop left in the graph, no relocalised scan reported as tracking or
-global_fix more than 2 m / 2 deg off the map. --check fails (exit 1) on a regression against the
+global_fix more than 2 m / 2 deg off the map (also when started from scratch at 10 evenly spaced
+scans, `localize --first N --count 10`, which measures the first fix). --check fails (exit 1) on a regression against the
 baseline (a result of an earlier run, --write-baseline): KITTI errors more than 10 % + 0.05 %
 (0.0005 deg/m) worse, more false loops or wrongly trusted scans, revisit consistency or loop
 recall more than 0.05 lower, or a sequence missing from the baseline. Simulations are
@@ -118,6 +119,28 @@ def localization_metrics(eval_dir):
     }
 
 
+def first_fixes(exe, map_dir, sim2, scans, d, log, starts=10, window=10):
+    """Global localisation from scratch at `starts` evenly spaced scans of the second traversal
+    (issue 14: first fix within 3 scans from any start point): `localize --first N --count window`.
+    Per start: the first fix's index in the run (-1 = none in the window) and whether any pose
+    reported as tracking or global_fix was more than 2 m / 2 deg off the map."""
+    out = []
+    for k in range(starts):
+        first = k * max(1, (scans - window) // starts)
+        ev = os.path.join(d, f"start_{first}")
+        shutil.rmtree(ev, ignore_errors=True)
+        poses = os.path.join(d, f"start_{first}.tum")
+        run([exe, "localize", map_dir, sim2, "-o", poses, "-q", "--eval-dir", ev, "--first", str(first),
+             "--count", str(window)], log)
+        m = localization_metrics(ev)
+        out.append({"first": first, "first_fix_scan": m["first_fix_scan"],
+                    "trusted_over_2m_or_2deg": m["trusted_over_2m_or_2deg"]})
+        for f in (poses, poses + ".csv", poses + ".boreas.txt"):
+            if os.path.exists(f):
+                os.remove(f)
+    return out
+
+
 def run_sequence(exe, seq, scans, out_root):
     d = os.path.join(out_root, seq["name"])
     os.makedirs(d, exist_ok=True)
@@ -144,6 +167,7 @@ def run_sequence(exe, seq, scans, out_root):
                 os.remove(old)
         run([exe, "localize", map_dir, sim2, "-o", poses, "-q", "--eval-dir", ev], log)
         result["localization"] = localization_metrics(ev)
+        result["localization"]["starts"] = first_fixes(exe, map_dir, sim2, scans, d, log)
     result["wall_s"] = time.time() - t0
     return result
 
@@ -160,6 +184,9 @@ def regressions(name, r):
     loc = r.get("localization")
     if loc and loc["trusted_over_2m_or_2deg"] > 0:
         out.append(f"{name}: {loc['trusted_over_2m_or_2deg']} relocalised scans trusted but > 2 m / 2 deg off")
+    for st in (loc or {}).get("starts", []):
+        if st["trusted_over_2m_or_2deg"] > 0:
+            out.append(f"{name}: start at scan {st['first']}: {st['trusted_over_2m_or_2deg']} scans trusted but > 2 m / 2 deg off")
     return out
 
 
@@ -184,10 +211,18 @@ def against_baseline(name, r, base):
     if loc and bl:
         if loc["trusted_over_2m_or_2deg"] > bl["trusted_over_2m_or_2deg"]:
             out.append(f"{name}: {loc['trusted_over_2m_or_2deg']} trusted scans > 2 m off (baseline {bl['trusted_over_2m_or_2deg']})")
+        if "starts" in bl and fixes_within_3(loc) < fixes_within_3(bl) - 2:
+            out.append(f"{name}: first fix within 3 scans from {fixes_within_3(loc)} of {len(loc['starts'])} starts "
+                       f"(baseline {fixes_within_3(bl)})")
         if loc["tracking_within_0.3m_0.5deg"] < bl["tracking_within_0.3m_0.5deg"] - 0.05:
             out.append(f"{name}: relocalisation within 0.3 m / 0.5 deg {loc['tracking_within_0.3m_0.5deg']:.3f} "
                        f"(baseline {bl['tracking_within_0.3m_0.5deg']:.3f})")
     return out
+
+
+def fixes_within_3(loc):
+    """Starts whose first fix came within 3 scans (index 0..2 of the run)."""
+    return sum(1 for st in loc.get("starts", []) if 0 <= st["first_fix_scan"] <= 2)
 
 
 def fmt(v, spec):
@@ -196,12 +231,13 @@ def fmt(v, spec):
 
 def table(results):
     rows = ["| sequence | split | km | odometry % / deg/m | SLAM % / deg/m | ATE odo / SLAM m | per-frame RPE max m "
-            "| loops: recall, false | revisit pairs consistent | reloc tracking ok, trusted > 2 m | SLAM scans/s |",
+            "| loops: recall, false | revisit pairs consistent | reloc tracking ok, trusted > 2 m, first fix ≤ 3 scans | SLAM scans/s |",
             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for name, split, r in results:
         o, s, l, mc = r["odometry"], r["slam"], r["loops"], r["map_consistency"]["revisits"]
         loc = r.get("localization")
-        reloc = "-" if not loc else f"{100 * loc['tracking_within_0.3m_0.5deg']:.1f} %, {loc['trusted_over_2m_or_2deg']}"
+        reloc = "-" if not loc else (f"{100 * loc['tracking_within_0.3m_0.5deg']:.1f} %, {loc['trusted_over_2m_or_2deg']}, "
+                                     f"{fixes_within_3(loc)} of {len(loc.get('starts', []))} starts")
         rows.append(
             f"| {name} | {split} | {o['path_m'] / 1000:.2f} | {fmt(o['kitti_t_percent'], '.2f')} / "
             f"{fmt(o['kitti_r_deg_per_m'], '.4f')} | {fmt(s['kitti_t_percent'], '.2f')} / "
