@@ -150,10 +150,11 @@ TEST_F(LocalizeIntegrity, KidnappedVehicleIsNeverTrustedWhileWrong) {
   }
   localize(d / "map", d / "kidnap", "kidnap", kScans - 50, errors, side, config.string());
   const auto good = checkTrusted(errors);
-  // A correct trusted pose within 15 scans of the kidnapping (scan 45 of the cut dataset).
+  // A correct trusted pose within 10 scans of the kidnapping (scan 45 of the cut dataset; issue 14:
+  // recovery within 10 scans). Measured: lost at 45-46, global fix at 47.
   bool found = false;
-  for (const std::size_t s : good) found = found || (s >= 45 && s < 60);
-  EXPECT_TRUE(found) << "no correct trusted pose within 15 scans after the kidnapping";
+  for (const std::size_t s : good) found = found || (s >= 45 && s < 55);
+  EXPECT_TRUE(found) << "no correct trusted pose within 10 scans after the kidnapping";
 }
 
 /// The map lacks traversal 1's scans 40-99 (~150 m of road); traversal 2 drives through the hole.
