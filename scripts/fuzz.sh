@@ -17,7 +17,7 @@ real=$src/../shared/data/real
 if [ ! -f "$build/build.ninja" ]; then
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
-    -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
+    -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
     -DRADARSLAM_BUILD_FUZZERS=ON -DRADARSLAM_BUILD_BENCHMARKS=OFF -DRADARSLAM_WERROR=OFF >/dev/null
 fi
 cmake --build "$build" -j"$(nproc)" --target fuzzers
