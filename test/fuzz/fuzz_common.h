@@ -5,12 +5,15 @@
 // reported by libFuzzer as a crash, like a sanitizer report, a hang or running out of memory.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "radarslam/core/errors.h"
 #include "radarslam/core/log.h"
@@ -46,6 +49,37 @@ void expectOnlyInputError(F&& parse) {
   } catch (const radarslam::InputError&) {
   }
 }
+
+/// Reads fields from the fuzzer's bytes; past the end, what is left (zeros, shorter arrays).
+class ByteReader {
+ public:
+  ByteReader(const std::uint8_t* d, std::size_t n) : d_(d), n_(n) {}
+  bool empty() const { return n_ == 0; }
+  template <class T>
+  T get() {
+    T v{};
+    const std::size_t k = std::min(sizeof v, n_);
+    std::memcpy(&v, d_, k);
+    d_ += k, n_ -= k;
+    return v;
+  }
+  template <class T>
+  std::vector<T> array(std::size_t count) {
+    count = std::min(count, n_ / sizeof(T));
+    std::vector<T> out(count);
+    if (count > 0) std::memcpy(out.data(), d_, count * sizeof(T));
+    d_ += count * sizeof(T), n_ -= count * sizeof(T);
+    return out;
+  }
+  std::string text(std::size_t count) {
+    const auto chars = array<char>(count);
+    return {chars.begin(), chars.end()};
+  }
+
+ private:
+  const std::uint8_t* d_;
+  std::size_t n_;
+};
 
 /// Call once from LLVMFuzzerInitialize: warnings for odd-but-valid input would flood stderr.
 inline void quietLogger() { radarslam::logger().setMinLoggingLevel(mrpt::system::LVL_ERROR); }

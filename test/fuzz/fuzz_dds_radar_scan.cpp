@@ -16,35 +16,6 @@
 #include "radarslam/dds/scan_stream_filter.h"
 #include "radarslam/obs/scan_checks.h"
 
-namespace {
-
-class Bytes {
- public:
-  Bytes(const std::uint8_t* d, std::size_t n) : d_(d), n_(n) {}
-  template <class T>
-  T get() {
-    T v{};
-    const std::size_t k = std::min(sizeof v, n_);
-    std::memcpy(&v, d_, k);
-    d_ += k, n_ -= k;
-    return v;
-  }
-  template <class T>
-  std::vector<T> array(std::size_t count) {
-    count = std::min(count, n_ / sizeof(T));
-    std::vector<T> out(count);
-    if (count > 0) std::memcpy(out.data(), d_, count * sizeof(T));
-    d_ += count * sizeof(T), n_ -= count * sizeof(T);
-    return out;
-  }
-
- private:
-  const std::uint8_t* d_;
-  std::size_t n_;
-};
-
-}  // namespace
-
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   radarslam::fuzz::quietLogger();
   return 0;
@@ -52,7 +23,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace radarslam;
-  Bytes in(data, size);
+  fuzz::ByteReader in(data, size);
   dds::RadarScanMsg m;
   m.num_azimuths = in.get<std::uint32_t>();
   m.num_bins = in.get<std::uint32_t>();

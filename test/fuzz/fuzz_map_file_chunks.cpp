@@ -22,33 +22,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class Bytes {
- public:
-  Bytes(const std::uint8_t* d, std::size_t n) : d_(d), n_(n) {}
-  bool empty() const { return n_ == 0; }
-  template <class T>
-  T get() {
-    T v{};
-    const std::size_t k = std::min(sizeof v, n_);
-    std::memcpy(&v, d_, k);
-    d_ += k, n_ -= k;
-    return v;
-  }
-  std::string text(std::size_t count) {
-    count = std::min(count, n_);
-    std::string out(reinterpret_cast<const char*>(d_), count);
-    d_ += count, n_ -= count;
-    return out;
-  }
-
- private:
-  const std::uint8_t* d_;
-  std::size_t n_;
-};
-
 constexpr std::uint64_t kMaxBytes = 100 * 1024;  // below what 16 chunks can state: the limit is reached
 
-std::string hex64(Bytes& in) {
+std::string hex64(radarslam::fuzz::ByteReader& in) {
   static const char* digits = "0123456789abcdef";
   std::string out(64, '0');
   for (char& c : out) c = digits[in.get<std::uint8_t>() & 15];
@@ -83,7 +59,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const fs::path dir = root / "map";
   fs::remove_all(root);
   fs::create_directories(dir);
-  Bytes in(data, size);
+  fuzz::ByteReader in(data, size);
   dds::MapFileAssembler assembler(dir, "dds:fuzz", kMaxBytes);
   const std::string manifest_sha(64, 'a');
   try {

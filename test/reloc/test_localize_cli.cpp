@@ -41,14 +41,16 @@ std::vector<std::vector<std::string>> rows(const std::filesystem::path& p) {
   return out;
 }
 
+// The drives of test_localize_integrity.cpp (simulated once for all): traversals 1 and 2.
+constexpr std::size_t kScans = 130;
+std::filesystem::path traversal(int k) {
+  return test::simulatedDataset("--scans " + std::to_string(kScans) + (k == 2 ? " --traversal 2" : ""));
+}
+
 TEST(LocalizeCli, SecondTraversalOfSimulatedWorld) {
   test::TempDir tmp;
   const auto d = tmp.path();
-  // The drives of test_localize_integrity.cpp (simulated once for both).
-  constexpr std::size_t kScans = 130;
-  const std::string scans = "--scans " + std::to_string(kScans);
-  const std::filesystem::path t1 = test::simulatedDataset(scans);
-  const std::filesystem::path t2 = test::simulatedDataset(scans + " --traversal 2");
+  const std::filesystem::path t1 = traversal(1), t2 = traversal(2);
   ASSERT_EQ(run("map-synth '" + t1.string() + "' -o '" + (d / "map").string() + "'", d / "synth.log"), 0)
       << slurp(d / "synth.log");
   const auto poses = d / "poses.tum";
@@ -121,10 +123,7 @@ TEST(LocalizeCli, SecondTraversalOfSimulatedWorld) {
 TEST(LocalizeCli, InASlamMapTheCompensatedCloudsAreUsedAsStored) {
   test::TempDir tmp;
   const auto d = tmp.path();
-  constexpr std::size_t kScans = 130;
-  const std::string scans = "--scans " + std::to_string(kScans);
-  const std::filesystem::path t1 = test::simulatedDataset(scans);
-  const std::filesystem::path t2 = test::simulatedDataset(scans + " --traversal 2");
+  const std::filesystem::path t1 = traversal(1), t2 = traversal(2);
   ASSERT_EQ(run("map '" + t1.string() + "' -o '" + (d / "map").string() + "' --threads 1 -q", d / "map.log"),
             0)
       << slurp(d / "map.log");
