@@ -132,29 +132,72 @@ Route buildRoute(const std::vector<RawPoint>& raw, const RouteParams& p, double 
     carry = u - len;
     if (raw[k].dwell_s > 0) dense.push_back({raw[k].p, yaw, raw[k].speed_limit, raw[k].dwell_s});
   }
-  // Lane offset (left of travel direction = (d.y, -d.x), see world.cpp), then arc length.
   const std::size_t n = dense.size();
-  std::vector<double> s(n, 0.0), kappa(n, 0.0);
+  // Curvature ramps: the centreline averaged over curvature_transition_m. A moving average turns
+  // each fillet's curvature step into a linear ramp of that length (a clothoid-like transition),
+  // so the yaw rate changes smoothly as a real car's does; yaw from the smoothed points.
+  const auto half = static_cast<std::size_t>(std::lround(p.curvature_transition_m / 2 / ds));
+  if (half > 0 && n > 2) {
+    // The path continued straight beyond both ends (along the first and last yaw), so the ends
+    // are averaged like any other point instead of keeping a corner.
+    std::vector<Vec2> padded;
+    const Vec2 d0{std::cos(dense.front().yaw), std::sin(dense.front().yaw)};
+    const Vec2 d1{std::cos(dense.back().yaw), std::sin(dense.back().yaw)};
+    for (std::size_t k = half; k > 0; --k)
+      padded.push_back(dense.front().p - d0 * (ds * static_cast<double>(k)));
+    for (const Dense& q : dense) padded.push_back(q.p);
+    for (std::size_t k = 1; k <= half; ++k)
+      padded.push_back(dense.back().p + d1 * (ds * static_cast<double>(k)));
+    std::vector<Vec2> sum(padded.size() + 1, Vec2{0, 0});
+    for (std::size_t k = 0; k < padded.size(); ++k) sum[k + 1] = sum[k] + padded[k];
+    std::vector<Vec2> smooth(n);
+    for (std::size_t k = 0; k < n; ++k)  // padded index of dense[k] is k + half
+      smooth[k] = (sum[k + 2 * half + 1] - sum[k]) * (1.0 / static_cast<double>(2 * half + 1));
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t lo = k >= 2 ? k - 2 : 0, hi = std::min(n - 1, k + 2);
+      const Vec2 d = smooth[hi] - smooth[lo];
+      if (d.norm() > 1e-3) dense[k].yaw = std::atan2(d.y, d.x);
+      dense[k].p = smooth[k];
+    }
+  }
+  // Lane offset (left of travel direction = (d.y, -d.x), see world.cpp), then arc length.
+  std::vector<double> s(n, 0.0), kappa(n, 0.0), dkappa(n, 0.0);
   for (auto& q : dense) q.p = q.p + Vec2{std::sin(q.yaw), -std::cos(q.yaw)} * lane_offset;
   for (std::size_t k = 1; k < n; ++k) s[k] = s[k - 1] + (dense[k].p - dense[k - 1].p).norm();
-  for (std::size_t k = 0; k < n; ++k) {  // curvature over +-2 m
-    const std::size_t lo = k >= 8 ? k - 8 : 0, hi = std::min(n - 1, k + 8);
-    if (s[hi] - s[lo] > 0.1) kappa[k] = std::abs(wrapAngle(dense[hi].yaw - dense[lo].yaw)) / (s[hi] - s[lo]);
+  constexpr std::size_t kWindow = 8;     // +-2 m
+  for (std::size_t k = 0; k < n; ++k) {  // signed curvature
+    const std::size_t lo = k >= kWindow ? k - kWindow : 0, hi = std::min(n - 1, k + kWindow);
+    if (s[hi] - s[lo] > 0.1) kappa[k] = wrapAngle(dense[hi].yaw - dense[lo].yaw) / (s[hi] - s[lo]);
+  }
+  for (std::size_t k = 0; k < n; ++k) {  // its rate of change along the path
+    const std::size_t lo = k >= kWindow ? k - kWindow : 0, hi = std::min(n - 1, k + kWindow);
+    if (s[hi] - s[lo] > 0.1) dkappa[k] = std::abs(kappa[hi] - kappa[lo]) / (s[hi] - s[lo]);
   }
   std::size_t end = n;
   if (max_length > 0)
     while (end > 2 && s[end - 1] > max_length) --end;
-  // Speed profile: limits, turns, stops; then acceleration limits forward and backward.
+  // Speed profile: limits; in turns lateral acceleration v^2 k, yaw rate v k and the yaw
+  // acceleration d(v k)/dt = v^2 dk/ds + k dv/dt, each term held to half the limit; stops; then
+  // acceleration limits both ways (gentler in a turn: the k dv/dt term).
+  const double max_yaw_rate = p.max_yaw_rate_dps * M_PI / 180,
+               max_yaw_accel = p.max_yaw_accel_dps2 * M_PI / 180;
+  auto accel = [&](std::size_t k, double limit) {
+    return std::abs(kappa[k]) > 1e-6 ? std::min(limit, 0.5 * max_yaw_accel / std::abs(kappa[k])) : limit;
+  };
   std::vector<double> v(end);
   for (std::size_t k = 0; k < end; ++k) {
-    v[k] = std::min(dense[k].limit, kappa[k] > 1e-6 ? std::sqrt(p.lateral_accel_mps2 / kappa[k]) : 1e9);
+    const double curvature = std::abs(kappa[k]);
+    v[k] = dense[k].limit;
+    if (curvature > 1e-6)
+      v[k] = std::min({v[k], std::sqrt(p.lateral_accel_mps2 / curvature), max_yaw_rate / curvature});
+    if (dkappa[k] > 1e-9) v[k] = std::min(v[k], std::sqrt(0.5 * max_yaw_accel / dkappa[k]));
     if (dense[k].dwell > 0) v[k] = 0;
   }
   v[0] = 0, v[end - 1] = 0;
   for (std::size_t k = 1; k < end; ++k)
-    v[k] = std::min(v[k], std::sqrt(v[k - 1] * v[k - 1] + 2 * p.accel_mps2 * (s[k] - s[k - 1])));
+    v[k] = std::min(v[k], std::sqrt(v[k - 1] * v[k - 1] + 2 * accel(k, p.accel_mps2) * (s[k] - s[k - 1])));
   for (std::size_t k = end - 1; k-- > 0;)
-    v[k] = std::min(v[k], std::sqrt(v[k + 1] * v[k + 1] + 2 * p.decel_mps2 * (s[k + 1] - s[k])));
+    v[k] = std::min(v[k], std::sqrt(v[k + 1] * v[k + 1] + 2 * accel(k, p.decel_mps2) * (s[k + 1] - s[k])));
   double t = 0;
   for (std::size_t k = 0; k < end; ++k) {
     if (k > 0) {

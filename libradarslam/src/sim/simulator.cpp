@@ -58,6 +58,9 @@ void loadSimulationConfig(const std::string& path, SimulationConfig& c) {
   r.get("corridor_speed_mps", c.route.corridor_speed_mps, Range::above(0, 15));
   r.get("country_speed_mps", c.route.country_speed_mps, Range::above(0, 15));
   r.get("lateral_accel_mps2", c.route.lateral_accel_mps2, Range::above(0, 20));
+  r.get("curvature_transition_m", c.route.curvature_transition_m, Range::closed(0, 50));
+  r.get("max_yaw_rate_dps", c.route.max_yaw_rate_dps, Range::above(0, 180));
+  r.get("max_yaw_accel_dps2", c.route.max_yaw_accel_dps2, Range::above(0, 1000));
   r.get("accel_mps2", c.route.accel_mps2, Range::above(0, 20));
   r.get("decel_mps2", c.route.decel_mps2, Range::above(0, 20));
   r.get("stop_probability", c.route.stop_probability, Range::closed(0, 1));

@@ -17,11 +17,21 @@ namespace radarslam::sim {
 
 struct RouteParams {
   double lane_offset_m = 1.8;  ///< traversal 1: left of the street centreline (UK); valid [-20, 20]
-  double lane_offset_traversal2_m = 0.6;      ///< traversal 2: a different lane position; valid [-20, 20]
-  double city_speed_mps = 11.0;               ///< valid (0, 15]
-  double corridor_speed_mps = 13.0;           ///< valid (0, 15]
-  double country_speed_mps = 15.0;            ///< never above 15 m/s; valid (0, 15]
-  double lateral_accel_mps2 = 2.0;            ///< sets the speed in turns; valid (0, 20]
+  double lane_offset_traversal2_m = 0.6;  ///< traversal 2: a different lane position; valid [-20, 20]
+  double city_speed_mps = 11.0;           ///< valid (0, 15]
+  double corridor_speed_mps = 13.0;       ///< valid (0, 15]
+  double country_speed_mps = 15.0;        ///< never above 15 m/s; valid (0, 15]
+  double lateral_accel_mps2 = 2.0;        ///< sets the speed in turns; valid (0, 20]
+  /// Length over which the curvature ramps into and out of each turn (the centreline is averaged
+  /// over this window: a clothoid-like ramp instead of the fillets' curvature step); 0 = steps.
+  /// The yaw acceleration of a turn entered at the lateral-acceleration limit is about
+  /// lateral_accel_mps2 / this (2 / 10 = 11.5 deg/s^2). Valid [0, 50].
+  double curvature_transition_m = 10.0;  ///< curvature ramp into and out of turns; 0 = steps
+  /// Yaw-rate and yaw-acceleration limits of the speed profile (a driver slows down for tight
+  /// corners); real Oxford ground truth 2019-01-10: yaw rate p99 24.7 deg/s, max 33.6; yaw
+  /// acceleration p99 15.3 deg/s^2 (docs/simulator.md). Valid (0, 180] and (0, 1000].
+  double max_yaw_rate_dps = 30.0;             ///< slows tight corners
+  double max_yaw_accel_dps2 = 15.0;           ///< slows where the curvature ramps
   double accel_mps2 = 1.5, decel_mps2 = 2.5;  ///< valid accel_mps2 (0, 20], decel_mps2 (0, 20]
   double stop_probability = 0.35;             ///< per straight crossing of an intersection; valid [0, 1]
   double stop_min_s = 2.0, stop_max_s = 6.0;  ///< valid stop_min_s [0, 600], stop_max_s [0, 600]
