@@ -14,10 +14,12 @@ scans, `localize --first N --count 10`, which measures the first fix). --check f
 baseline (a result of an earlier run, --write-baseline): KITTI errors more than 10 % + 0.05 %
 (0.0005 deg/m) worse, more false loops or wrongly trusted scans, revisit consistency or loop
 recall more than 0.05 lower, or a sequence missing from the baseline. Simulations are
-cached in OUT/<name>/sim (re-used when the options are the same). Results: a Markdown table on
+cached in OUT/<name>/sim (re-used when the options and the simulator's sources and configs are the same). Results: a Markdown table on
 stdout and OUT/results.json.
 """
 import argparse
+import glob
+import hashlib
 import json
 import math
 import os
@@ -67,6 +69,21 @@ def run(cmd, log):
         raise RuntimeError(f"{' '.join(cmd)} failed ({r.returncode}); see {log}")
 
 
+def simulator_version():
+    """A hash of what decides a simulation: the simulator's sources and its configs."""
+    h = hashlib.sha256()
+    paths = []
+    for sub in ("libradarslam/src/sim", "libradarslam/include/radarslam/sim"):
+        for dirpath, _, files in os.walk(os.path.join(ROOT, sub)):
+            paths += [os.path.join(dirpath, f) for f in files]
+    paths += glob.glob(os.path.join(ROOT, "config", "sim*.yaml"))
+    for path in sorted(paths):
+        h.update(os.path.relpath(path, ROOT).encode())
+        with open(path, "rb") as f:
+            h.update(f.read())
+    return h.hexdigest()[:16]
+
+
 def simulate(exe, seq, scans, traversal, weather, out, log):
     """Simulates into `out` unless it already holds the same simulation."""
     shared = os.path.join(os.path.dirname(ROOT), "shared")
@@ -74,15 +91,16 @@ def simulate(exe, seq, scans, traversal, weather, out, log):
     args = ["--seed", str(seq["seed"]), "--scans", str(scans), "--weather", weather,
             "--traversal", str(traversal)] + extra
     stamp = os.path.join(out + ".args")
+    key = " ".join(args) + " simulator " + simulator_version()
     if os.path.isdir(out) and os.path.exists(stamp):
         with open(stamp, encoding="utf-8") as f:
-            if f.read() == " ".join(args):
+            if f.read() == key:
                 return
     if os.path.exists(stamp):
         os.remove(stamp)
     run([exe, "simulate", out, "--force"] + args, log)
     with open(stamp, "w", encoding="utf-8") as f:
-        f.write(" ".join(args))
+        f.write(key)
 
 
 def localization_metrics(eval_dir):
@@ -119,6 +137,15 @@ def localization_metrics(eval_dir):
     }
 
 
+def clear_localize_outputs(poses, eval_dir=None):
+    """Removes the pose files of `localize -o poses` (and its --eval-dir, when given)."""
+    if eval_dir:
+        shutil.rmtree(eval_dir, ignore_errors=True)
+    for f in (poses, poses + ".csv", poses + ".boreas.txt"):
+        if os.path.exists(f):
+            os.remove(f)
+
+
 def first_fixes(exe, map_dir, sim2, scans, d, log, starts=10, window=10):
     """Global localisation from scratch at `starts` evenly spaced scans of the second traversal
     (issue 14: first fix within 3 scans from any start point): `localize --first N --count window`.
@@ -128,16 +155,14 @@ def first_fixes(exe, map_dir, sim2, scans, d, log, starts=10, window=10):
     for k in range(starts):
         first = k * max(1, (scans - window) // starts)
         ev = os.path.join(d, f"start_{first}")
-        shutil.rmtree(ev, ignore_errors=True)
         poses = os.path.join(d, f"start_{first}.tum")
+        clear_localize_outputs(poses, ev)
         run([exe, "localize", map_dir, sim2, "-o", poses, "-q", "--eval-dir", ev, "--first", str(first),
              "--count", str(window)], log)
         m = localization_metrics(ev)
         out.append({"first": first, "first_fix_scan": m["first_fix_scan"],
                     "trusted_over_2m_or_2deg": m["trusted_over_2m_or_2deg"]})
-        for f in (poses, poses + ".csv", poses + ".boreas.txt"):
-            if os.path.exists(f):
-                os.remove(f)
+        clear_localize_outputs(poses)  # the eval dir stays: its summary is the record
     return out
 
 
@@ -160,11 +185,8 @@ def run_sequence(exe, seq, scans, out_root):
         sim2 = os.path.join(d, "sim2")
         simulate(exe, seq, scans, 2, seq["localize_weather"], sim2, log)
         ev = os.path.join(d, "localize_eval")
-        shutil.rmtree(ev, ignore_errors=True)
         poses = os.path.join(d, "localize.tum")
-        for old in (poses, poses + ".csv", poses + ".boreas.txt"):
-            if os.path.exists(old):
-                os.remove(old)
+        clear_localize_outputs(poses, ev)
         run([exe, "localize", map_dir, sim2, "-o", poses, "-q", "--eval-dir", ev], log)
         result["localization"] = localization_metrics(ev)
         result["localization"]["starts"] = first_fixes(exe, map_dir, sim2, scans, d, log)
