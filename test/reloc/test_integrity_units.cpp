@@ -82,6 +82,32 @@ TEST(Integrity, WindowCatchesASlowWalkThatSingleStepsHide) {
   }
 }
 
+TEST(Integrity, BeyondTheMappedPathAPoseIsOutsideAndInheritsTheLeverUncertainty) {
+  KeyframeMap map;
+  for (int k = 0; k <= 50; ++k) {  // keyframes every 2 m along y = 0
+    Keyframe kf;
+    kf.pose = {2.0 * k, 0.0, 0.0};
+    map.keyframes.push_back(kf);
+  }
+  const IntegrityParams p;  // max_keyframe_distance_m 10
+  const MapCoverage on_street = mapCoverage(map, {51.0, 3.5, 0.2}, p);
+  EXPECT_FALSE(on_street.outside);
+  EXPECT_TRUE(on_street.keyframe == 25 || on_street.keyframe == 26);
+  EXPECT_EQ(on_street.extra_cov, Eigen::Matrix3d::Zero());
+  EXPECT_FALSE(mapCoverage(map, {109.0, 0.0, 0.0}, p).outside);  // 9 m past the last keyframe
+  const MapCoverage near = mapCoverage(map, {115.0, 0.0, 0.0}, p),
+                    far = mapCoverage(map, {140.0, 0.0, 0.0}, p);
+  EXPECT_TRUE(near.outside);
+  EXPECT_EQ(near.keyframe, 50);
+  EXPECT_NEAR(near.distance_m, 15.0, 1e-9);
+  EXPECT_TRUE(far.outside);
+  // The uncertainty grows with the lever (the odometry noise model over the distance).
+  EXPECT_GT(near.extra_cov(0, 0), 0.0);
+  EXPECT_GT(far.extra_cov(0, 0), near.extra_cov(0, 0));
+  EXPECT_GT(far.extra_cov(2, 2), near.extra_cov(2, 2));
+  EXPECT_FALSE(mapCoverage(KeyframeMap{}, {0, 0, 0}, p).outside);
+}
+
 TEST(Integrity, YamlValidRanges) {
   IntegrityParams p;
   loadParams(YamlParams::fromText("chi2_probability: 0.99\nmax_failures: 2\n", "t.yaml"), p);
@@ -89,6 +115,10 @@ TEST(Integrity, YamlValidRanges) {
   EXPECT_EQ(p.max_failures, 2);
   EXPECT_THROW(loadParams(YamlParams::fromText("chi2_probability: 1.5\n", "t.yaml"), p), InputError);
   EXPECT_THROW(loadParams(YamlParams::fromText("window_scans: 1\n", "t.yaml"), p), InputError);
+  IntegrityParams q;
+  loadParams(YamlParams::fromText("max_keyframe_distance_m: 25\n", "t.yaml"), q);
+  EXPECT_DOUBLE_EQ(q.max_keyframe_distance_m, 25.0);
+  EXPECT_THROW(loadParams(YamlParams::fromText("max_keyframe_distance_m: 0\n", "t.yaml"), q), InputError);
 }
 
 }  // namespace

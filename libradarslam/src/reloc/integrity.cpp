@@ -32,6 +32,7 @@ void loadParams(const YamlParams& yaml, IntegrityParams& p) {
   yaml.get("max_condition", p.max_condition, Range::above(1, 1e12));
   yaml.get("max_failures", p.max_failures, Range::closed(0, 1000000));
   yaml.get("max_position_3sigma_m", p.max_position_3sigma_m, Range::above(0, 1e6));
+  yaml.get("max_keyframe_distance_m", p.max_keyframe_distance_m, Range::above(0, 1e6));
 }
 
 double chi2Quantile3(double p) {
@@ -137,6 +138,26 @@ void MotionWindow::addPose(bool registered, const mrpt::math::TPose2D& pose, con
   entries_.back().registered = registered;
   entries_.back().pose = pose;
   entries_.back().cov = cov;
+}
+
+MapCoverage mapCoverage(const KeyframeMap& map, const mrpt::math::TPose2D& pose,
+                        const IntegrityParams& params) {
+  MapCoverage c;
+  double best_d2 = 0;
+  for (std::size_t k = 0; k < map.keyframes.size(); ++k) {
+    const double dx = map.keyframes[k].pose.x - pose.x, dy = map.keyframes[k].pose.y - pose.y;
+    const double d2 = dx * dx + dy * dy;
+    if (c.keyframe < 0 || d2 < best_d2) c.keyframe = static_cast<long>(k), best_d2 = d2;
+  }
+  if (c.keyframe < 0) return c;
+  c.distance_m = std::sqrt(best_d2);
+  c.outside = c.distance_m > params.max_keyframe_distance_m;
+  if (c.outside) {
+    const mrpt::math::TPose2D& kf = map.keyframes[static_cast<std::size_t>(c.keyframe)].pose;
+    const mrpt::math::TPose2D lever = (mrpt::poses::CPose2D(pose) - mrpt::poses::CPose2D(kf)).asTPose();
+    c.extra_cov = composeCovariance(kf, Eigen::Matrix3d::Zero(), lever, odometryCovariance(lever, params));
+  }
+  return c;
 }
 
 }  // namespace radarslam

@@ -88,7 +88,7 @@ bool compensatesMap(const KeyframeMap& map, const LocalizerParams& params) {
 }
 
 struct Localizer::Impl {
-  KeyframeMap compensated;  ///< only for a map of raw clouds (compensatesMap)
+  std::optional<KeyframeMap> compensated;  ///< only for a map of raw clouds (compensatesMap)
   const KeyframeMap& map;
   LocalizerParams params;
   RadarOdometry odometry;
@@ -118,9 +118,10 @@ struct Localizer::Impl {
   std::optional<Prior> prior;
   StampNs last_stamp = 0;
   Impl(const KeyframeMap& map_in, const OdometryParams& op, const LocalizerParams& p)
-      : compensated(compensatesMap(map_in, p) ? compensateMapMotion(map_in, p.map_sweep_period_s)
-                                              : KeyframeMap{}),
-        map(compensatesMap(map_in, p) ? compensated : map_in),
+      : compensated(compensatesMap(map_in, p)
+                        ? std::optional<KeyframeMap>(compensateMapMotion(map_in, p.map_sweep_period_s))
+                        : std::nullopt),
+        map(compensated ? *compensated : map_in),
         params(p),
         odometry([&] {
           OdometryParams o = op;
@@ -246,6 +247,11 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
         fusePoses(predicted, predicted_cov, r.pose, r.covariance, fused, fused_cov);
         report(fused, fused_cov, LocalizationStatus::Degraded, tr.anchor);
         res.check = "degenerate";
+      } else if (const MapCoverage cover = mapCoverage(m.map, r.pose, ip); cover.outside) {
+        // Check (f): outside the mapped path; relative to the map as uncertain as the odometry
+        // over the distance from the nearest keyframe.
+        report(r.pose, r.covariance + cover.extra_cov, LocalizationStatus::Degraded, tr.anchor);
+        res.check = "outside";
       } else {
         report(r.pose, r.covariance, LocalizationStatus::Tracking, tr.anchor);
       }

@@ -14,7 +14,12 @@
 //      (information filter: the odometry fills the weak direction), `degraded`;
 //  (e) consistency with the previous poses: the map-relative motion over the last window_scans
 //      accepted scans against the odometry over the same scans, chi^2-tested likewise (a slow walk
-//      of the matcher that each single step hides).
+//      of the matcher that each single step hides);
+//  (f) coverage: a pose more than max_keyframe_distance_m from every map keyframe is outside the
+//      mapped path (the map's points were seen from elsewhere, and where the SLAM map has no
+//      keyframe it says nothing about its own accuracy): `degraded`, with the odometry noise
+//      model over the distance from the nearest keyframe added to its covariance. SLAM keyframes
+//      lie <= 2 m apart along the driven path, so 10 m is two lane widths beyond any of them.
 // A failed check: the pose is the odometry prediction, its covariance the prediction's (it grows
 // with every scan), status `degraded`; past max_failures consecutive failures or 3 sigma position
 // > max_position_3sigma_m: `lost`.
@@ -24,6 +29,7 @@
 #include <deque>
 
 #include "radarslam/core/se2_covariance.h"
+#include "radarslam/map/keyframe_map.h"
 
 namespace radarslam {
 
@@ -47,6 +53,8 @@ struct IntegrityParams {
   double max_condition = 100.0;        ///< > 1: xy covariance eigenvalue ratio that is degenerate
   int max_failures = 5;                ///< >= 0: consecutive failed scans reported degraded, then lost
   double max_position_3sigma_m = 5.0;  ///< > 0: 3 sigma (largest xy axis) beyond which: lost
+  /// > 0: a pose farther than this from every map keyframe is outside the mapped path (check (f)).
+  double max_keyframe_distance_m = 10.0;
 };
 
 /// Overrides from the keys of the `integrity:` section (names as the fields).
@@ -69,6 +77,17 @@ double position3Sigma(const Eigen::Matrix3d& cov);
 
 /// Ratio of the largest to the smallest eigenvalue of the xy covariance.
 double xyCondition(const Eigen::Matrix3d& cov);
+
+/// Check (f): where `pose` lies relative to the map's keyframes.
+struct MapCoverage {
+  long keyframe = -1;             ///< index of the nearest keyframe (-1: the map has none)
+  double distance_m = 0;          ///< to it
+  bool outside = false;           ///< distance_m > params.max_keyframe_distance_m
+  Eigen::Matrix3d extra_cov       ///< if outside: the odometry noise model over the lever from the
+      = Eigen::Matrix3d::Zero();  ///< keyframe to the pose, in the map frame (else zero)
+};
+MapCoverage mapCoverage(const KeyframeMap& map, const mrpt::math::TPose2D& pose,
+                        const IntegrityParams& params);
 
 /// Information-filter fusion of two estimates of the same pose (map frame).
 void fusePoses(const mrpt::math::TPose2D& a, const Eigen::Matrix3d& cov_a, const mrpt::math::TPose2D& b,
