@@ -13,6 +13,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include <radarslam/core/atomic_file.h>
@@ -158,22 +159,22 @@ int runMap(int argc, char** argv) {
   if (extend_arg.isSet()) {
     base_dir = resolveMapPath(extend_arg.getValue());
     base = loadMap(base_dir);
-    if (!base->meta.clouds_motion_compensated)
-      throw InputError(
-          (base_dir / "manifest.yaml").string(),
-          "the map's keyframe clouds are raw sweeps (clouds_motion_compensated: false, a map-synth "
-          "map); --extend needs a map built by radarslam map");
+  }
+  RadarSlam slam(params);
+  if (base) {
+    try {
+      slam.extend(*base);
+    } catch (const std::invalid_argument& e) {
+      throw InputError((base_dir / "manifest.yaml").string(), e.what());
+    }
   }
   std::cerr << "map: " << toString(reader->kind()) << " (" << reader->sensorName() << "), scans " << first
             << ".." << end - 1 << " of " << reader->size() << ", config " << config_used << ", "
             << params.threads << (params.threads == 1 ? " thread" : " threads") << " -> " << map_dir.string()
             << "\n";
 
-  RadarSlam slam(params);
-  if (base) {
+  if (base)
     std::cerr << "map: extending " << base_dir.string() << " (" << base->keyframes.size() << " keyframes)\n";
-    slam.extend(*base);
-  }
   ScanIterator scans(*reader, skip_arg.getValue(), first, end);
   const auto t0 = Clock::now();
   std::size_t done = 0;

@@ -78,6 +78,10 @@ struct RadarSlam::Impl {
     if (!anchors.empty() || !state.keyframes.empty())
       throw std::logic_error("RadarSlam::extend after process()");
     if (base.keyframes.empty()) throw std::invalid_argument("RadarSlam::extend: the map has no keyframe");
+    if (!base.meta.clouds_motion_compensated)  // the new session's clouds would not match them
+      throw std::invalid_argument(
+          "the map's keyframe clouds are raw sweeps (clouds_motion_compensated: false, a map-synth map); "
+          "--extend needs a map built by radarslam map");
     std::map<std::uint64_t, std::uint64_t> index;  // map keyframe id -> state index
     double travelled_m = 0;
     for (const auto& k : base.keyframes) {

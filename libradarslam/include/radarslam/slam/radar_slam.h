@@ -58,7 +58,8 @@ class RadarSlam {
   /// anchored to the map by its first verified loop to a map keyframe (relocalisation), then
   /// loops in both sessions enter one pose graph. map() then holds both sessions (keyframe ids
   /// renumbered 0..N-1 in the base map's order, then the new ones); trajectory() the new scans.
-  /// finish() throws std::runtime_error if the new session never found the map.
+  /// finish() throws std::runtime_error if the new session never found the map. Throws
+  /// std::invalid_argument for a map without keyframes or of raw (not motion-compensated) clouds.
   void extend(const KeyframeMap& base);
 
   /// Tracks one scan (time order) and hands new keyframes to local mapping. Blocks while local
