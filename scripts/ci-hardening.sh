@@ -49,6 +49,9 @@ t1=$(date +%s)
   # Process timeouts in the multi-process tests (test/dds/dds_test_util.h) only bound hangs; the
   # instrumented binaries are ~5x slower, so they get 4x the time.
   export RADARSLAM_TEST_TIME_SCALE=4
+  # The simulated drives the tests share (test/support/simulated_dataset.h) come from the Release
+  # build's program when the Release stage built it (.ci/run): same drives, a quarter of the time.
+  [ -x "$src/build/apps/radarslam" ] && export RADARSLAM_TEST_SIMULATOR="$src/build/apps/radarslam"
   cd "$build"
   # Excluded here, and only these (all run in the Release stage, scripts/test.sh; CI time budget):
   # - the whole-system SLAM runs on a simulated drive (SlamOnSimulation.*,

@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <sstream>
@@ -23,11 +24,21 @@
 
 namespace radarslam::test {
 
-/// Identifies the current build of the radarslam program (size and modification time): a rebuilt
+/// The radarslam program that simulates the shared datasets: RADARSLAM_CLI, or
+/// $RADARSLAM_TEST_SIMULATOR when set. The sanitizer stage (scripts/ci-hardening.sh) points it at
+/// the Release build's program: the same deterministic drives without the instrumented simulator's
+/// ~4x cost (the simulator itself is still tested under the sanitizers by test_sim and the
+/// `simulate` CLI tests).
+inline std::filesystem::path simulatorProgram() {
+  if (const char* env = std::getenv("RADARSLAM_TEST_SIMULATOR"); env != nullptr && *env != '\0') return env;
+  return RADARSLAM_CLI;
+}
+
+/// Identifies the current build of the simulating program (size and modification time): a rebuilt
 /// program simulates again, and cache entries of older builds are removed.
 inline std::string programStamp() {
   namespace fs = std::filesystem;
-  const fs::path cli(RADARSLAM_CLI);
+  const fs::path cli = simulatorProgram();
   const auto mtime = fs::last_write_time(cli).time_since_epoch();
   std::ostringstream s;
   s << "build-" << fs::file_size(cli) << "-"
@@ -73,7 +84,8 @@ inline std::filesystem::path simulatedDataset(const std::string& args) {
   const fs::path partial = root / stamp / (key.str() + ".partial");
   fs::remove_all(partial, ec);  // left by a killed run of this cache
   fs::create_directories(partial.parent_path());
-  const CliResult r = runCli("simulate '" + partial.string() + "' " + args, partial.parent_path());
+  const CliResult r = runCommand(simulatorProgram().string() + " simulate '" + partial.string() + "' " + args,
+                                 partial.parent_path());
   if (r.code != 0)
     throw std::runtime_error("radarslam simulate " + args + ": exit " + std::to_string(r.code) + "\n" +
                              r.err);
