@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
-#include <limits>
 
 #include <radarslam/eval/alignment.h>
 #include <radarslam/io/trajectory_files.h>
+#include <radarslam/map/keyframe_search.h>
 
 namespace radarslam::cli {
 
@@ -90,15 +90,10 @@ std::optional<MapFrameTruth> truthInMapFrame(const KeyframeMap& map, const Datas
 
 std::optional<std::pair<double, double>> mapRelativeError(const KeyframeMap& map, const MapFrameTruth& truth,
                                                           const TPose2D& est, const TPose2D& est_truth) {
-  std::size_t best = map.keyframes.size();
-  double best_d2 = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < map.keyframes.size(); ++k) {
-    if (!truth.keyframe_truth[k]) continue;
-    const auto& p = map.keyframes[k].pose;
-    const double d2 = (p.x - est.x) * (p.x - est.x) + (p.y - est.y) * (p.y - est.y);
-    if (d2 < best_d2) best_d2 = d2, best = k;
-  }
-  if (best == map.keyframes.size()) return std::nullopt;
+  const long nearest =
+      nearestKeyframe(map, est.x, est.y, [&](std::size_t k) { return truth.keyframe_truth[k].has_value(); });
+  if (nearest < 0) return std::nullopt;
+  const auto best = static_cast<std::size_t>(nearest);
   const CPose2D rel_est = CPose2D(est) - CPose2D(map.keyframes[best].pose);
   const CPose2D rel_true = CPose2D(est_truth) - CPose2D(*truth.keyframe_truth[best]);
   const double heading = std::abs(std::remainder(rel_est.phi() - rel_true.phi(), 2 * M_PI)) * 180 / M_PI;

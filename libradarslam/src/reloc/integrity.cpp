@@ -11,6 +11,7 @@
 
 #include "radarslam/core/errors.h"
 #include "radarslam/core/yaml_params.h"
+#include "radarslam/map/keyframe_search.h"
 
 namespace radarslam {
 
@@ -143,17 +144,12 @@ void MotionWindow::addPose(bool registered, const mrpt::math::TPose2D& pose, con
 MapCoverage mapCoverage(const KeyframeMap& map, const mrpt::math::TPose2D& pose,
                         const IntegrityParams& params) {
   MapCoverage c;
-  double best_d2 = 0;
-  for (std::size_t k = 0; k < map.keyframes.size(); ++k) {
-    const double dx = map.keyframes[k].pose.x - pose.x, dy = map.keyframes[k].pose.y - pose.y;
-    const double d2 = dx * dx + dy * dy;
-    if (c.keyframe < 0 || d2 < best_d2) c.keyframe = static_cast<long>(k), best_d2 = d2;
-  }
+  c.keyframe = nearestKeyframe(map, pose.x, pose.y);
   if (c.keyframe < 0) return c;
-  c.distance_m = std::sqrt(best_d2);
+  const mrpt::math::TPose2D& kf = map.keyframes[static_cast<std::size_t>(c.keyframe)].pose;
+  c.distance_m = std::hypot(kf.x - pose.x, kf.y - pose.y);
   c.outside = c.distance_m > params.max_keyframe_distance_m;
   if (c.outside) {
-    const mrpt::math::TPose2D& kf = map.keyframes[static_cast<std::size_t>(c.keyframe)].pose;
     const mrpt::math::TPose2D lever = (mrpt::poses::CPose2D(pose) - mrpt::poses::CPose2D(kf)).asTPose();
     c.extra_cov = composeCovariance(kf, Eigen::Matrix3d::Zero(), lever, odometryCovariance(lever, params));
   }

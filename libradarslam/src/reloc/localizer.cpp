@@ -12,6 +12,7 @@
 #include "radarslam/core/errors.h"
 #include "radarslam/core/yaml_params.h"
 #include "radarslam/frontend/odometry.h"
+#include "radarslam/map/keyframe_search.h"
 #include "radarslam/radar/motion_compensation.h"
 #include "radarslam/reloc/map_motion.h"
 
@@ -54,16 +55,6 @@ double msSince(Clock::time_point t0) {
 }
 mrpt::math::TPose2D compose(const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b) {
   return (mrpt::poses::CPose2D(a) + mrpt::poses::CPose2D(b)).asTPose();
-}
-long nearestKeyframe(const KeyframeMap& map, const mrpt::math::TPose2D& p) {
-  long best = -1;
-  double best_d2 = 0;
-  for (std::size_t k = 0; k < map.keyframes.size(); ++k) {
-    const double dx = map.keyframes[k].pose.x - p.x, dy = map.keyframes[k].pose.y - p.y;
-    const double d2 = dx * dx + dy * dy;
-    if (best < 0 || d2 < best_d2) best = static_cast<long>(k), best_d2 = d2;
-  }
-  return best;
 }
 /// Covariance of keyframe b's pose relative to keyframe a's, in the map frame, with the odometry
 /// noise model compounded along the keyframes between them (map order: the order they were
@@ -183,7 +174,7 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     res.pose = pose;
     res.covariance = cov;
     res.status = status;
-    res.keyframe = keyframe >= 0 ? keyframe : nearestKeyframe(m.map, pose);
+    res.keyframe = keyframe >= 0 ? keyframe : nearestKeyframe(m.map, pose.x, pose.y);
     if (status == LocalizationStatus::Tracking || status == LocalizationStatus::GlobalFix)
       m.trusted_keyframe = res.keyframe;
   };
@@ -300,7 +291,8 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     if (tr.accepted && m.prior &&
         mahalanobis2(poseDifference(m.prior->pose, tr.icp.pose),
                      m.prior->cov +
-                         mapChainCovariance(m.map, m.prior->anchor, nearestKeyframe(m.map, tr.icp.pose), ip) +
+                         mapChainCovariance(m.map, m.prior->anchor,
+                                            nearestKeyframe(m.map, tr.icp.pose.x, tr.icp.pose.y), ip) +
                          tr.icp.covariance) > m.chi2_threshold) {
       res.check = "prior";
     } else if (tr.accepted) {

@@ -8,6 +8,7 @@
 
 #include "radarslam/core/errors.h"
 #include "radarslam/core/yaml_params.h"
+#include "radarslam/map/keyframe_search.h"
 
 namespace radarslam {
 
@@ -67,12 +68,7 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
   }
   out.icp = submap_->registerScan(cloud, predicted, params_.icp);
   const IcpResult& r = out.icp;
-  double best_d2 = 0;
-  for (const std::size_t k : submap_->keyframeIndices()) {
-    const auto& p = map_.keyframes[k].pose;
-    const double d2 = (p.x - r.pose.x) * (p.x - r.pose.x) + (p.y - r.pose.y) * (p.y - r.pose.y);
-    if (out.anchor < 0 || d2 < best_d2) out.anchor = static_cast<long>(k), best_d2 = d2;
-  }
+  out.anchor = nearestKeyframe(map_, submap_->keyframeIndices(), r.pose.x, r.pose.y);
   if (other_) {  // a second copy of this place: does it explain the scan elsewhere as well?
     out.alternative = other_->registerScan(cloud, predicted, params_.icp);
     const IcpResult& a = out.alternative;
