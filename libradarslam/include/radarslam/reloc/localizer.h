@@ -53,10 +53,11 @@ struct LocalizerParams {
   int confirm_fixes = 2;            ///< valid [1, 100]
   double confirm_distance_m = 2.0;  ///< agreement of consecutive fixes; valid (0, 1000]
   double confirm_angle_deg = 5.0;   ///< valid (0, 180]
-  // The odometry's adaptive search radius (frontend/motion_prior_bound.h) is off here by default:
-  // the fixed radius tracked more scans within 0.3 m / 0.5 deg on the grid fog test sequence
-  // (81.5 % vs 78.0 %, docs/localization.md).
-  bool odometry_adaptive_radius = false;  ///< overrides odometry.matching.adaptive_radius
+  // The odometry's adaptive search radius (frontend/motion_prior_bound.h), on as in the odometry
+  // itself. Off, the localiser's odometry slid along a featureless wall together with the map
+  // registration, so the odometry check (a) could not see the slide (test network-s22: 73 scans
+  // trusted 2-118 m off; on: none; docs/localization.md).
+  bool odometry_adaptive_radius = true;  ///< overrides odometry.matching.adaptive_radius
   /// After losing the track, the last pose is dead-reckoned with the odometry (covariance from
   /// integrity.odom_sigma_*) while the odometry keeps tracking without a data gap; a global fix
   /// outside its chi^2 bound (integrity.chi2_probability) is rejected as a look-alike place.
