@@ -39,8 +39,15 @@ void onSignal(int sig) {
 [[noreturn]] void cleanupThenDie(int sig) {
   Registry& r = registry();
   r.mutex.lock();  // held until the process ends: nothing registers (and then creates) after this
-  std::error_code ec;
-  for (auto it = r.paths.rbegin(); it != r.paths.rend(); ++it) fs::remove_all(it->second, ec);
+  // Other threads may still be writing into a registered directory (the simulator's writers): a
+  // file created while remove_all runs makes its final rmdir fail, so try again until the path is
+  // gone (each pass removes what is there; the writers are racing a process about to end).
+  for (auto it = r.paths.rbegin(); it != r.paths.rend(); ++it) {
+    std::error_code ec;
+    for (int pass = 0; pass < 1000 && fs::symlink_status(it->second, ec).type() != fs::file_type::not_found;
+         ++pass)
+      fs::remove_all(it->second, ec);
+  }
   std::signal(sig, SIG_DFL);
   sigset_t set;
   sigemptyset(&set);
