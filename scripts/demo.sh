@@ -11,8 +11,11 @@ bash scripts/configure.sh
 cmake --build build -j"$(nproc)" --target radarslam
 rs=./build/apps/radarslam
 out=out/demo
-if [ ! -f "$out/sim/gt/radar_odometry.csv" ]; then
+# The simulation is re-used while the simulator's sources and configs are unchanged.
+sim_key=$(cat libradarslam/src/sim/* libradarslam/include/radarslam/sim/* config/sim*.yaml | sha256sum | cut -c1-16)
+if [ ! -f "$out/sim/gt/radar_odometry.csv" ] || [ "$(cat "$out/sim.key" 2>/dev/null)" != "$sim_key" ]; then
   $rs simulate "$out/sim" --force
+  echo "$sim_key" > "$out/sim.key"
 fi
 $rs info "$out/sim"
 $rs map "$out/sim" -o maps/demo
