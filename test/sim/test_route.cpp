@@ -6,20 +6,12 @@
 
 #include "radarslam/sim/route.h"
 #include "radarslam/sim/world.h"
+#include "sim_test_util.h"
 
 using namespace radarslam;
 using namespace radarslam::sim;
 
-namespace {
-Trajectory sampleTrajectory(const Route& r, double dt_s) {
-  Trajectory t;
-  for (double s = 0; s < r.duration(); s += dt_s) {
-    const StampNs stamp = r.start_stamp + static_cast<StampNs>(s * 1e9);
-    t.push_back({stamp, r.poseAt(stamp)});
-  }
-  return t;
-}
-}  // namespace
+using simtest::sampleTrajectory;
 
 TEST(SimWorld, SameSeedSameWorldOtherSeedOtherWorld) {
   const World a = generateWorld({}, 7, 1), b = generateWorld({}, 7, 1), c = generateWorld({}, 8, 1);

@@ -11,6 +11,7 @@
 #include "radarslam/sim/street_network.h"
 #include "radarslam/sim/world.h"
 #include "shared_data.h"
+#include "sim_test_util.h"
 
 using namespace radarslam;
 using namespace radarslam::sim;
@@ -18,21 +19,14 @@ using namespace radarslam::sim;
 namespace {
 constexpr double kScanPeriodS = 0.25;  // the Oxford radar's 4 Hz: the real ground truth's spacing
 
-Trajectory sampled(const Route& r) {
-  Trajectory t;
-  for (double s = 0; s < r.duration(); s += kScanPeriodS) {
-    const StampNs stamp = r.start_stamp + static_cast<StampNs>(s * 1e9);
-    t.push_back({stamp, r.poseAt(stamp)});
-  }
-  return t;
-}
-
 eval::YawDynamics gridRoute(std::uint64_t seed, const RouteParams& p) {
-  return eval::yawDynamics(sampled(planRoute(generateWorld({}, seed, 1), p, seed, 1)));
+  return eval::yawDynamics(
+      simtest::sampleTrajectory(planRoute(generateWorld({}, seed, 1), p, seed, 1), kScanPeriodS));
 }
 
 eval::YawDynamics networkRoute(std::uint64_t seed, const RouteParams& p) {
-  return eval::yawDynamics(sampled(planRouteThrough(generateStreetNetwork(seed, p).lap, p, seed, 1)));
+  return eval::yawDynamics(simtest::sampleTrajectory(
+      planRouteThrough(generateStreetNetwork(seed, p).lap, p, seed, 1), kScanPeriodS));
 }
 
 void print(const char* what, const eval::YawDynamics& d) {
