@@ -288,13 +288,17 @@ void YamlParams::get(const std::string& key, unsigned& value, const Range& range
 }
 
 void YamlParams::get(const std::string& key, long& value, const Range& range) const {
-  int v = static_cast<int>(value);
-  get(key, v, range);
-  value = v;
+  if (!has(key)) return;
+  double d = static_cast<double>(value);  // exact for integers up to 2^53
+  get(key, d);
+  check(key, d, range);
+  if (d != std::floor(d) || std::abs(d) > 9007199254740992.0)
+    fail(key, "expected an integer, got " + number(d));
+  value = static_cast<long>(d);
 }
 
 void YamlParams::get(const std::string& key, std::size_t& value, const Range& range) const {
-  int v = static_cast<int>(value);
+  long v = static_cast<long>(value);  // 64-bit: sizes beyond 2^31 (e.g. cells of a city grid)
   get(key, v, range);
   if (v < 0) fail(key, "expected a non-negative integer");
   value = static_cast<std::size_t>(v);
