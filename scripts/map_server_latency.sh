@@ -29,10 +29,10 @@ wait "$server_pid" || true
 
 at() { { grep -o "$1 received at UNIX time [0-9.]*" "$work/client.err" || true; } | tail -1 | awk '{print $NF}'; }
 rss() { awk -F': ' '/Maximum resident set size/ {printf "%.0f", $2 / 1024}' "$1"; }
-grid=$(at grid) cloud=$(at cloud) octo=$(at octomap)
+grid=$(at grid) overview=$(at "grid overview") cloud=$(at cloud) octo=$(at octomap)
 all=$(printf '%s\n' $grid $cloud $octo | sort -g | tail -1)
-awk -v s="$start" -v g="${grid:-0}" -v a="$all" -v sr="$(rss "$work/server.err")" -v cr="$(rss "$work/client.err")" \
-  -v l="${LAYERS:-grid,cloud,octomap}" \
-  'BEGIN { printf "layers %s: grid after %.2f s, every layer after %.2f s (from the server start); peak RSS server %d MiB, client %d MiB\n", l, (g > 0 ? g - s : 0), a - s, sr, cr }'
+awk -v s="$start" -v g="${grid:-0}" -v o="${overview:-0}" -v a="$all" -v sr="$(rss "$work/server.err")" \
+  -v cr="$(rss "$work/client.err")" -v l="${LAYERS:-grid,cloud,octomap}" \
+  'BEGIN { printf "layers %s: %sgrid after %.2f s, every layer after %.2f s (from the server start); peak RSS server %d MiB, client %d MiB\n", l, (o > 0 ? sprintf("grid overview after %.2f s, full ", o - s) : ""), (g > 0 ? g - s : 0), a - s, sr, cr }'
 grep -h "published map" "$work/server.err" | sed 's/^/  server: /'
 grep -h "received map" "$work/client.out" | sed 's/^/  client: /'

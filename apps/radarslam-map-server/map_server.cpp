@@ -10,7 +10,10 @@
 
 #include <radarslam/core/errors.h>
 #include <radarslam/core/log.h>
+#include <radarslam/dds/cloud_tiles.h>
+#include <radarslam/dds/grid_tiles.h>
 #include <radarslam/dds/map_messages.h>
+#include <radarslam/map/layer_files.h>
 #include <radarslam/map/map_io.h>
 #include <radarslam/map/sha256.h>
 
@@ -52,8 +55,9 @@ std::optional<std::string> manifestSha256(const fs::path& map_dir) {
 std::string mapFingerprint(const fs::path& map_dir) {
   std::ostringstream fp;
   fp << manifestSha256(map_dir).value_or("-");
-  for (const char* name : {"manifest.yaml", "parameters.yaml", "keyframes.bin", "points.bin", "graph.bin",
-                           "layers/grid.pgm", "layers/cloud.pcd", "layers/map.bt"}) {
+  for (const char* name :
+       {"manifest.yaml", "parameters.yaml", "keyframes.bin", "points.bin", "graph.bin", "layers/grid.pgm",
+        "layers/grid_overview.pgm", "layers/grid_tiles.txt", "layers/cloud.pcd", "layers/map.bt"}) {
     struct stat st {};
     if (::stat((map_dir / name).c_str(), &st) != 0)
       fp << " -";
@@ -137,23 +141,73 @@ void MapServer::load() {
                   map_name_.c_str(), revision_, info.keyframes, source, summary.c_str(), secs);
 }
 
-// The grid first (what a late joiner needs soonest), then MapInfo, which names its checksum; then
-// the other layers, each published as soon as it is read and freed before the next one. All
-// carry the same header stamp, so a client knows which publication each belongs to.
+void MapServer::replaceTileWriters(std::size_t grid_tiles, std::size_t cloud_tiles) {
+  tiles_pub_.reset();  // the previous publication's tiles go with its writer
+  cloud_tiles_pub_.reset();
+  if (grid_tiles > 0)
+    tiles_pub_ = std::make_unique<dds::Publisher<dds::MapTileMsg>>(
+        domain_, dds::kMapTilesTopic, dds::TopicQos::latchedLast(static_cast<std::int32_t>(grid_tiles)));
+  if (cloud_tiles > 0) {
+    cloud_tiles_pub_ = std::make_unique<dds::Publisher<dds::PointCloud2Msg>>(
+        domain_, dds::kCloudMapTilesTopic,
+        dds::TopicQos::latchedLast(static_cast<std::int32_t>(cloud_tiles)));
+    // A whole cloud latched by an earlier, untiled publication must not outlive it.
+    cloud_pub_ = std::make_unique<dds::Publisher<dds::PointCloud2Msg>>(domain_, dds::kCloudMapTopic,
+                                                                       dds::TopicQos::latched());
+  }
+}
+
+// The grid first (what a late joiner needs soonest; for a tiled grid its overview), then MapInfo,
+// which names its checksum (and the tiles); then the tiles, then the other layers, each published
+// as soon as it is read and freed before the next one. All carry the same header stamp, so a
+// client knows which publication each belongs to.
 void MapServer::publishSaved(const MapManifestSummary& manifest, dds::MapInfoMsg& info,
                              std::string& summary) {
   const MapLayersManifest& layers = *manifest.layers;
   const StampNs now = dds::fromTimeMsg(info.header.stamp);
-  if (grid_pub_) {
+  std::vector<GridTileEntry> tiles;
+  std::vector<CloudTileEntry> cloud_tiles;
+  if (cloud_pub_ && layers.tiling.tiled()) {  // checked before anything is sent
+    cloud_tiles = readCloudTileIndexLayer(params_.map_dir, layers);
+    dds::describeCloudTiles(info, cloud_tiles, layers.cloud_points, layers.cloud_data_sha256);
+  }
+  if (grid_pub_ && layers.tiling.tiled()) {
+    tiles = readGridTileIndexLayer(params_.map_dir, layers);  // checked before anything is sent
+    const dds::OccupancyGridMsg overview = dds::overviewMessage(params_.map_dir, layers, now);
+    grid_pub_->publish(overview);
+    summary += "grid overview " + std::to_string(overview.width) + "x" + std::to_string(overview.height) +
+               sinceStart() + ", ";
+    info.grid_sha256 = layers.grid_cells_sha256;
+    dds::describeTiles(info, layers.tiling, tiles, layers.grid_overview_cells_sha256);
+  } else if (grid_pub_) {
     const dds::OccupancyGridMsg grid = dds::gridMessage(params_.map_dir, layers, now);
     grid_pub_->publish(grid);  // before hashing its cells: a late joiner gets it sooner
     summary += "grid " + std::to_string(grid.width) + "x" + std::to_string(grid.height) + sinceStart() + ", ";
     // The manifest's hash of the cells (from the file just checked against the manifest), if any.
     info.grid_sha256 = layers.grid_cells_sha256.empty() ? dds::gridSha256(grid) : layers.grid_cells_sha256;
+    dds::describeTiles(info, layers.tiling, {}, "");
   }
+  replaceTileWriters(tiles.size(), cloud_tiles.size());
   info_pub_->publish(info);
   revision_ = info.revision;
-  if (cloud_pub_) {
+  if (!tiles.empty()) {
+    const auto res = static_cast<float>(layers.params.grid.resolution_m);
+    forEachGridTileLayer(params_.map_dir, layers, tiles,
+                         [&](const GridTileEntry& e, const std::vector<std::int8_t>& cells) {
+                           tiles_pub_->publish(dds::tileMessage(info, layers.tiling, e, cells, res,
+                                                                layers.grid_origin_x, layers.grid_origin_y));
+                         });
+    summary += std::to_string(tiles.size()) + " tiles of " + std::to_string(layers.tiling.tile_cells) +
+               " cells" + sinceStart() + ", ";
+  }
+  if (!cloud_tiles.empty()) {
+    forEachCloudTileLayer(params_.map_dir, layers, cloud_tiles,
+                          [&](const CloudTileEntry&, const std::vector<std::uint8_t>& data) {
+                            cloud_tiles_pub_->publish(dds::cloudTileMessage(info, data));
+                          });
+    summary += "cloud " + std::to_string(layers.cloud_points) + " points in " +
+               std::to_string(cloud_tiles.size()) + " tiles" + sinceStart() + ", ";
+  } else if (cloud_pub_) {
     const dds::PointCloud2Msg cloud = dds::cloudMessage(params_.map_dir, layers, now);
     summary += "cloud " + std::to_string(cloud.width) + " points" + sinceStart() + ", ";
     cloud_pub_->publish(cloud);
@@ -165,22 +219,46 @@ void MapServer::publishSaved(const MapManifestSummary& manifest, dds::MapInfoMsg
   }
 }
 
-// An older map: the layers are built from the keyframes. The OctoMap (grid_columns fill) reuses
-// the grid's occupancy raster when the resolutions agree.
+// An older map: the layers are built from the keyframes (a large grid tiled with the default
+// tiling). The OctoMap (grid_columns fill) reuses the grid's occupancy raster when the
+// resolutions agree.
 void MapServer::publishBuilt(const KeyframeMap& map, dds::MapInfoMsg& info, std::string& summary) {
   const StampNs now = dds::fromTimeMsg(info.header.stamp);
   std::optional<OccupancyRaster> raster;
   const bool share_raster = params_.octomap.fill == OctomapExportParams::Fill::grid_columns &&
                             params_.octomap.resolution_m == params_.grid.resolution_m;
-  if (grid_pub_ || (octomap_pub_ && share_raster)) raster = buildOccupancy(map, params_.grid);
+  GridExportParams grid_params = params_.grid;  // tiled when large, as saved layers are
+  grid_params.max_cells = std::max(grid_params.max_cells, kMaxLayerGridCells);
+  if (grid_pub_ || (octomap_pub_ && share_raster)) raster = buildOccupancy(map, grid_params);
+  std::optional<dds::OccupancyGridMsg> grid;
+  GridTiling tiling;
+  std::vector<GridTileEntry> tiles;
   if (grid_pub_) {
-    const dds::OccupancyGridMsg grid = dds::gridMessage(*raster, now);
-    grid_pub_->publish(grid);  // before hashing its cells: a late joiner gets it sooner
-    summary += "grid " + std::to_string(grid.width) + "x" + std::to_string(grid.height) + sinceStart() + ", ";
-    info.grid_sha256 = dds::gridSha256(grid);
+    grid = dds::gridMessage(*raster, now);
+    tiling = gridTiling(grid->width, grid->height, GridTilingParams{});
+    if (tiling.tiled()) {
+      const dds::OccupancyGridMsg overview = dds::overviewMessage(*grid, tiling);
+      grid_pub_->publish(overview);
+      summary += "grid overview " + std::to_string(overview.width) + "x" + std::to_string(overview.height) +
+                 sinceStart() + ", ";
+      tiles = gridTileIndex(grid->data, tiling);
+      dds::describeTiles(info, tiling, tiles, dds::gridSha256(overview));
+    } else {
+      grid_pub_->publish(*grid);  // before hashing its cells: a late joiner gets it sooner
+      summary +=
+          "grid " + std::to_string(grid->width) + "x" + std::to_string(grid->height) + sinceStart() + ", ";
+      dds::describeTiles(info, tiling, {}, "");
+    }
+    info.grid_sha256 = dds::gridSha256(*grid);
   }
+  replaceTileWriters(tiles.size(), 0);
   info_pub_->publish(info);
   revision_ = info.revision;
+  for (const auto& e : tiles)
+    tiles_pub_->publish(dds::tileMessage(info, tiling, e, tileCells(grid->data, tiling, e.tx, e.ty),
+                                         grid->resolution, grid->origin.x, grid->origin.y));
+  if (!tiles.empty()) summary += std::to_string(tiles.size()) + " tiles" + sinceStart() + ", ";
+  grid.reset();
   if (cloud_pub_) {
     const dds::PointCloud2Msg cloud = dds::cloudMessage(map, now);
     summary += "cloud " + std::to_string(cloud.width) + " points" + sinceStart() + ", ";

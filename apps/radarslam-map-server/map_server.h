@@ -63,6 +63,11 @@ class MapServer {
   std::unique_ptr<dds::Publisher<dds::PointCloud2Msg>> cloud_pub_;
   std::unique_ptr<dds::Publisher<dds::OctomapMsg>> octomap_pub_;
   std::unique_ptr<dds::Publisher<dds::MapInfoMsg>> info_pub_;
+  /// One writer per publication, deep enough for all of its tiles (as the map files layer).
+  std::unique_ptr<dds::Publisher<dds::MapTileMsg>> tiles_pub_;
+  std::unique_ptr<dds::Publisher<dds::PointCloud2Msg>> cloud_tiles_pub_;
+  /// New writers for this publication's grid and cloud tiles (none if 0).
+  void replaceTileWriters(std::size_t grid_tiles, std::size_t cloud_tiles);
   std::unique_ptr<dds::MapFilesPublisher> files_pub_;
   std::string loaded_manifest_sha_;
   std::string failed_fingerprint_;  // mapFingerprint() of the map that last failed to load

@@ -279,6 +279,16 @@ int runMap(int argc, char** argv) {
     writeTextAtomically(tmp / "loops.csv", loopsCsv(loops));
     GridExportParams grid;
     grid.resolution_m = grid_res_arg.getValue();
+    if (!grid_res_arg
+             .isSet()) {  // a city-scale map: the single-image grid coarser, full resolution in layers/
+      const double fit = fittingGridResolution(map, grid);
+      if (fit != grid.resolution_m)
+        logger().logFmt(mrpt::system::LVL_INFO,
+                        "grid.png/pgm/gridmap at %g m (at %g m the map is more than %zu cells; the full-"
+                        "resolution grid is in layers/, tiled)",
+                        fit, grid.resolution_m, grid.max_cells);
+      grid.resolution_m = fit;
+    }
     exportOccupancyGrid(map, tmp, "grid", grid);
     if (report) {
       fs::create_directories(tmp / "eval");

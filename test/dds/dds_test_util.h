@@ -27,12 +27,12 @@ extern char** environ;
 
 namespace radarslam::test {
 
-/// A DDS domain id for this test: `index` (0..19) is distinct per test, the pid spreads runs of the
+/// A DDS domain id for this test: `index` (0..24) is distinct per test, the pid spreads runs of the
 /// suite. Two tests running at the same time never share an id: equal ids need equal indices
-/// (the pid part is a multiple of 20), i.e. the same test. Ids stay within 1..200 (Cyclone: < 233).
+/// (the pid part is a multiple of 25), i.e. the same test. Ids stay within 1..200 (Cyclone: < 233).
 inline unsigned testDomainId(unsigned index) {
-  if (index >= 20) throw std::logic_error("testDomainId: index must be < 20");
-  return 1 + (static_cast<unsigned>(::getpid()) % 10) * 20 + index;
+  if (index >= 25) throw std::logic_error("testDomainId: index must be < 25");
+  return 1 + (static_cast<unsigned>(::getpid()) % 8) * 25 + index;
 }
 
 /// Factor applied to every process timeout in these tests: RADARSLAM_TEST_TIME_SCALE (default 1).

@@ -163,6 +163,17 @@ void toC(const MapInfoMsg& m, radarslam_msg_dds__MapInfo_& out,
   out.grid_sha256 = view(m.grid_sha256);
   out.manifest_sha256 = view(m.manifest_sha256);
   toC(m.created, out.created);
+  out.grid_width = m.grid_width;
+  out.grid_height = m.grid_height;
+  out.tile_cells = m.tile_cells;
+  out.tiles_x = m.tiles_x;
+  out.tiles_y = m.tiles_y;
+  viewSeq(out.tile_indices, m.tile_indices);
+  viewSeq(out.tile_sha256, m.tile_sha256);
+  out.overview_sha256 = view(m.overview_sha256);
+  out.cloud_tile_count = m.cloud_tile_count;
+  out.cloud_points = m.cloud_points;
+  out.cloud_sha256 = view(m.cloud_sha256);
 }
 template <>
 MapInfoMsg fromC(const radarslam_msg_dds__MapInfo_& in) {
@@ -175,6 +186,44 @@ MapInfoMsg fromC(const radarslam_msg_dds__MapInfo_& in) {
   m.grid_sha256 = copyStr(in.grid_sha256);
   m.manifest_sha256 = copyStr(in.manifest_sha256);
   m.created = fromC(in.created);
+  m.grid_width = in.grid_width;
+  m.grid_height = in.grid_height;
+  m.tile_cells = in.tile_cells;
+  m.tiles_x = in.tiles_x;
+  m.tiles_y = in.tiles_y;
+  m.tile_indices = copySeq<std::uint32_t>(in.tile_indices);
+  m.tile_sha256 = copySeq<std::uint8_t>(in.tile_sha256);
+  m.overview_sha256 = copyStr(in.overview_sha256);
+  m.cloud_tile_count = in.cloud_tile_count;
+  m.cloud_points = in.cloud_points;
+  m.cloud_sha256 = copyStr(in.cloud_sha256);
+  return m;
+}
+
+// --- radarslam/MapTile ------------------------------------------------------------------------
+template <>
+void toC(const MapTileMsg& m, radarslam_msg_dds__MapTile_& out,
+         std::vector<sensor_msgs_msg_dds__PointField_>& storage) {
+  toC(m.header, out.header);
+  out.revision = m.revision;
+  out.tile_x = m.tile_x;
+  out.tile_y = m.tile_y;
+  out.tile_cells = m.tile_cells;
+  out.tile_count = m.tile_count;
+  out.cells_sha256 = view(m.cells_sha256);
+  toC(m.grid, out.grid, storage);
+}
+template <>
+MapTileMsg fromC(const radarslam_msg_dds__MapTile_& in) {
+  MapTileMsg m;
+  m.header = fromC(in.header);
+  m.revision = in.revision;
+  m.tile_x = in.tile_x;
+  m.tile_y = in.tile_y;
+  m.tile_cells = in.tile_cells;
+  m.tile_count = in.tile_count;
+  m.cells_sha256 = copyStr(in.cells_sha256);
+  m.grid = fromC<OccupancyGridMsg>(in.grid);
   return m;
 }
 

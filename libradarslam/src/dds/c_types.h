@@ -14,6 +14,7 @@
 #include "radarslam/msg/LocalizationStatus.h"
 #include "radarslam/msg/MapFileChunk.h"
 #include "radarslam/msg/MapInfo.h"
+#include "radarslam/msg/MapTile.h"
 #include "radarslam/msg/RadarScan.h"
 #include "sensor_msgs/msg/PointCloud2.h"
 #include "std_msgs/msg/Header.h"
@@ -38,6 +39,7 @@ RADARSLAM_DDS_CTYPE(MapInfoMsg, radarslam_msg_dds__MapInfo_);
 RADARSLAM_DDS_CTYPE(RadarScanMsg, radarslam_msg_dds__RadarScan_);
 RADARSLAM_DDS_CTYPE(LocalizationStatusMsg, radarslam_msg_dds__LocalizationStatus_);
 RADARSLAM_DDS_CTYPE(MapFileChunkMsg, radarslam_msg_dds__MapFileChunk_);
+RADARSLAM_DDS_CTYPE(MapTileMsg, radarslam_msg_dds__MapTile_);
 #undef RADARSLAM_DDS_CTYPE
 
 /// Fills `out` as a view of `msg` (valid while msg and `storage` live).

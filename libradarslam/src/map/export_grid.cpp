@@ -24,18 +24,43 @@
 namespace radarslam {
 namespace fs = std::filesystem;
 
-OccupancyRaster buildOccupancy(const KeyframeMap& map, const GridExportParams& params) {
-  if (!(params.resolution_m > 0)) throw InputError("grid export", "resolution must be > 0");
-  const double res = params.resolution_m;
+namespace {
+struct Bounds {
   double xmin = std::numeric_limits<double>::max(), ymin = xmin, xmax = -xmin, ymax = -xmin;
+};
+// The bounding box of every keyframe and keyframe point in the map frame.
+Bounds mapBounds(const KeyframeMap& map) {
+  Bounds b;
   auto grow = [&](double x, double y) {
-    xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y), ymax = std::max(ymax, y);
+    b.xmin = std::min(b.xmin, x), b.xmax = std::max(b.xmax, x), b.ymin = std::min(b.ymin, y),
+    b.ymax = std::max(b.ymax, y);
   };
   for (const auto& kf : map.keyframes) {
     grow(kf.pose.x, kf.pose.y);
     const double c = std::cos(kf.pose.phi), s = std::sin(kf.pose.phi);
     for (const auto& p : kf.points) grow(kf.pose.x + c * p.x - s * p.y, kf.pose.y + s * p.x + c * p.y);
   }
+  return b;
+}
+double gridCells(const Bounds& b, double res, double margin) {
+  const double x0 = std::floor((b.xmin - margin) / res) * res, y0 = std::floor((b.ymin - margin) / res) * res;
+  return std::ceil((b.xmax + margin - x0) / res) * std::ceil((b.ymax + margin - y0) / res);
+}
+}  // namespace
+
+double fittingGridResolution(const KeyframeMap& map, const GridExportParams& params) {
+  if (map.keyframes.empty() || !(params.resolution_m > 0)) return params.resolution_m;
+  const Bounds b = mapBounds(map);
+  for (int k = 1;; ++k)
+    if (gridCells(b, k * params.resolution_m, params.margin_m) <= static_cast<double>(params.max_cells))
+      return k * params.resolution_m;
+}
+
+OccupancyRaster buildOccupancy(const KeyframeMap& map, const GridExportParams& params) {
+  if (!(params.resolution_m > 0)) throw InputError("grid export", "resolution must be > 0");
+  const double res = params.resolution_m;
+  const Bounds bounds = mapBounds(map);
+  const double xmin = bounds.xmin, ymin = bounds.ymin, xmax = bounds.xmax, ymax = bounds.ymax;
   OccupancyRaster out;
   out.resolution = res;
   if (map.keyframes.empty()) return out;

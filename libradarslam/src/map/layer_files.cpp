@@ -56,6 +56,13 @@ std::vector<std::string> pcdLine(const std::vector<std::string>& lines, std::siz
 
 }  // namespace
 
+unsigned char gridPixel(int cell) { return cellPixel(cell); }
+
+int gridCellOfPixel(unsigned char pixel) {
+  static const PixelTable table;
+  return table.cell[pixel];
+}
+
 std::string gridPgm(const std::vector<std::int8_t>& cells, std::uint32_t width, std::uint32_t height) {
   std::string out = "P5\n" + std::to_string(width) + " " + std::to_string(height) + "\n255\n";
   const std::size_t header = out.size();
@@ -81,26 +88,37 @@ std::string gridRosYaml(const std::string& image, float resolution, double origi
   return yaml;
 }
 
-std::string cloudPcd(const KeyframeMap& map, std::uint64_t* points) {
-  std::uint64_t n = 0;
-  for (const auto& kf : map.keyframes) n += kf.points.size();
-  const std::string count = std::to_string(n);
+std::string cloudPcdHeader(std::uint64_t points) {
+  const std::string count = std::to_string(points);
   std::string pcd = "# .PCD v0.7 - radarslam map points, map frame\nVERSION 0.7\nFIELDS x y z intensity\n";
   pcd.append("SIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH ").append(count);
   pcd.append("\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS ").append(count).append("\nDATA binary\n");
-  std::size_t at = pcd.size();
-  pcd.resize(at + n * 16);
+  return pcd;
+}
+
+std::vector<std::uint8_t> cloudPayload(const KeyframeMap& map) {
+  std::uint64_t n = 0;
+  for (const auto& kf : map.keyframes) n += kf.points.size();
+  std::vector<std::uint8_t> data(n * 16);
+  std::size_t at = 0;
   for (const auto& kf : map.keyframes) {
     const double c = std::cos(kf.pose.phi), s = std::sin(kf.pose.phi);
     for (const auto& p : kf.points) {
       // Same arithmetic as dds::cloudMessage and exportPointCloud: identical floats.
       const float v[4] = {static_cast<float>(kf.pose.x + c * p.x - s * p.y),
                           static_cast<float>(kf.pose.y + s * p.x + c * p.y), 0.f, p.power};
-      std::memcpy(pcd.data() + at, v, sizeof v);  // little-endian host
+      std::memcpy(data.data() + at, v, sizeof v);  // little-endian host
       at += sizeof v;
     }
   }
-  if (points) *points = n;
+  return data;
+}
+
+std::string cloudPcd(const KeyframeMap& map, std::uint64_t* points) {
+  const std::vector<std::uint8_t> data = cloudPayload(map);
+  if (points) *points = data.size() / 16;
+  std::string pcd = cloudPcdHeader(data.size() / 16);
+  pcd.append(data.begin(), data.end());
   return pcd;
 }
 
@@ -147,19 +165,21 @@ template std::string readLayerFile(const fs::path&, const LayerFileEntry&, const
 template std::string readLayerFile(const fs::path&, const LayerFileEntry&, const std::string&,
                                    std::vector<std::uint8_t>&);
 
-std::vector<std::int8_t> readGridLayer(const fs::path& map_dir, const MapLayersManifest& layers) {
-  const LayerFileEntry& e = layers.file("grid");
+namespace {
+
+// Cells of a P5 grid layer file of width x height (pixels flipped back to cells, row 0 = lowest y).
+std::vector<std::int8_t> readPgmCells(const fs::path& map_dir, const LayerFileEntry& e, std::uint32_t width,
+                                      std::uint32_t height) {
   const std::string file = (map_dir / e.name).string();
   std::vector<std::int8_t> px;
   const std::string header = readLayerFile(map_dir, e, "255", px);
-  const std::string expected =
-      "P5\n" + std::to_string(layers.grid_width) + " " + std::to_string(layers.grid_height) + "\n255\n";
-  if (header != expected || px.size() != static_cast<std::size_t>(layers.grid_width) * layers.grid_height)
-    throw InputError(file, "not the " + std::to_string(layers.grid_width) + "x" +
-                               std::to_string(layers.grid_height) + " 8-bit P5 image the manifest describes");
+  const std::string expected = "P5\n" + std::to_string(width) + " " + std::to_string(height) + "\n255\n";
+  if (header != expected || px.size() != static_cast<std::size_t>(width) * height)
+    throw InputError(file, "not the " + std::to_string(width) + "x" + std::to_string(height) +
+                               " 8-bit P5 image the manifest describes");
   // Back to cells, flipping rows in place (image top row = highest y; cells row 0 = lowest y).
   static const PixelTable table;
-  const std::size_t w = layers.grid_width, h = layers.grid_height;
+  const std::size_t w = width, h = height;
   std::vector<std::int8_t> tmp(w);
   for (std::size_t row = 0; row < h / 2; ++row) {
     std::int8_t* a = px.data() + row * w;
@@ -176,6 +196,81 @@ std::vector<std::int8_t> readGridLayer(const fs::path& map_dir, const MapLayersM
     v = c;
   }
   return px;
+}
+
+}  // namespace
+
+std::vector<std::int8_t> readGridLayer(const fs::path& map_dir, const MapLayersManifest& layers) {
+  return readPgmCells(map_dir, layers.file("grid"), layers.grid_width, layers.grid_height);
+}
+
+std::vector<std::int8_t> readGridOverviewLayer(const fs::path& map_dir, const MapLayersManifest& layers) {
+  return readPgmCells(map_dir, layers.file("grid_overview"), layers.tiling.overview_width,
+                      layers.tiling.overview_height);
+}
+
+std::vector<GridTileEntry> readGridTileIndexLayer(const fs::path& map_dir, const MapLayersManifest& layers) {
+  const LayerFileEntry& e = layers.file("grid_tiles");
+  std::vector<std::uint8_t> body;
+  const std::string header = readLayerFile(map_dir, e, kGridTilesHeader, body);
+  const std::string file = (map_dir / e.name).string();
+  if (header != std::string(kGridTilesHeader) + "\n")
+    throw InputError(file, std::string("expected the first line '") + kGridTilesHeader + "'");
+  return parseGridTileIndex(std::string(body.begin(), body.end()), layers.tiling, file);
+}
+
+void forEachGridTileLayer(
+    const fs::path& map_dir, const MapLayersManifest& layers, const std::vector<GridTileEntry>& index,
+    const std::function<void(const GridTileEntry&, const std::vector<std::int8_t>&)>& fn) {
+  const LayerFileEntry& e = layers.file("grid");
+  const fs::path path = map_dir / e.name;
+  const std::string file = path.string();
+  const GridTiling& t = layers.tiling;
+  requireRegularFile(path, "missing layer file (listed in manifest.yaml)");
+  const std::string header = "P5\n" + std::to_string(t.width) + " " + std::to_string(t.height) + "\n255\n";
+  const std::uint64_t size = header.size() + std::uint64_t{t.width} * t.height;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || static_cast<std::uint64_t>(st.st_size) != size || size != e.bytes)
+    throw InputError(file, "size mismatch: " + std::to_string(st.st_size) + " bytes, manifest says " +
+                               std::to_string(e.bytes) + " (a " + std::to_string(t.width) + "x" +
+                               std::to_string(t.height) + " P5 image)");
+  std::ifstream in(path, std::ios::binary);
+  std::string got(header.size(), '\0');
+  if (!in || !in.read(got.data(), static_cast<std::streamsize>(got.size())) || got != header)
+    throw InputError(file, "not the " + std::to_string(t.width) + "x" + std::to_string(t.height) +
+                               " 8-bit P5 image the manifest describes");
+  static const PixelTable table;
+  std::vector<std::int8_t> band, tile;
+  std::uint32_t band_ty = UINT32_MAX;
+  for (const GridTileEntry& entry : index) {
+    const TileRect r = tileRect(t, entry.tx, entry.ty);
+    if (entry.ty != band_ty) {  // read the image rows of this row of tiles (cells rows row0..row0+rows)
+      band_ty = entry.ty;
+      band.resize(std::size_t{r.rows} * t.width);
+      const std::uint64_t first_image_row = t.height - (r.row0 + r.rows);
+      in.seekg(static_cast<std::streamoff>(header.size() + first_image_row * t.width));
+      if (!in.read(reinterpret_cast<char*>(band.data()), static_cast<std::streamsize>(band.size())))
+        throw InputError(file, "read failed at tile row " + std::to_string(entry.ty));
+    }
+    tile.resize(std::size_t{r.cols} * r.rows);
+    for (std::uint32_t row = 0; row < r.rows; ++row) {  // band row 0 = the tile's highest cell row
+      const std::int8_t* src = band.data() + std::size_t{r.rows - 1 - row} * t.width + r.col0;
+      std::int8_t* dst = tile.data() + std::size_t{row} * r.cols;
+      for (std::uint32_t col = 0; col < r.cols; ++col) {
+        const std::int8_t c = table.cell[static_cast<unsigned char>(src[col])];
+        if (c == -2)
+          throw InputError(file, "pixel value " + std::to_string(static_cast<unsigned char>(src[col])) +
+                                     " is not one a radarslam grid layer holds");
+        dst[col] = c;
+      }
+    }
+    const std::string sha = sha256Hex({reinterpret_cast<const unsigned char*>(tile.data()), tile.size()});
+    if (sha != entry.sha256)
+      throw InputError(file, "checksum mismatch in tile (" + std::to_string(entry.tx) + ", " +
+                                 std::to_string(entry.ty) + "): SHA-256 " + sha + ", " + kGridTilesLayerFile +
+                                 " says " + entry.sha256 + ": layer file is corrupt");
+    fn(entry, tile);
+  }
 }
 
 std::vector<std::uint8_t> readCloudLayer(const fs::path& map_dir, const MapLayersManifest& layers,
@@ -203,6 +298,52 @@ std::vector<std::uint8_t> readCloudLayer(const fs::path& map_dir, const MapLayer
     throw InputError(file, "PCD holds " + std::to_string(data.size() / 16) + " points, manifest says " + n);
   points = layers.cloud_points;
   return data;
+}
+
+std::vector<CloudTileEntry> readCloudTileIndexLayer(const fs::path& map_dir,
+                                                    const MapLayersManifest& layers) {
+  const LayerFileEntry& e = layers.file("cloud_tiles");
+  std::vector<std::uint8_t> body;
+  const std::string header = readLayerFile(map_dir, e, kCloudTilesHeader, body);
+  const std::string file = (map_dir / e.name).string();
+  if (header != std::string(kCloudTilesHeader) + "\n")
+    throw InputError(file, std::string("expected the first line '") + kCloudTilesHeader + "'");
+  return parseCloudTileIndex(std::string(body.begin(), body.end()), layers.tiling, layers.cloud_points, file);
+}
+
+void forEachCloudTileLayer(
+    const fs::path& map_dir, const MapLayersManifest& layers, const std::vector<CloudTileEntry>& index,
+    const std::function<void(const CloudTileEntry&, const std::vector<std::uint8_t>&)>& fn) {
+  const LayerFileEntry& e = layers.file("cloud");
+  const fs::path path = map_dir / e.name;
+  const std::string file = path.string();
+  requireRegularFile(path, "missing layer file (listed in manifest.yaml)");
+  const std::string header = cloudPcdHeader(layers.cloud_points);
+  const std::uint64_t size = header.size() + layers.cloud_points * 16;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || static_cast<std::uint64_t>(st.st_size) != size || size != e.bytes)
+    throw InputError(file, "size mismatch: " + std::to_string(st.st_size) + " bytes, manifest says " +
+                               std::to_string(e.bytes) + " (" + std::to_string(layers.cloud_points) +
+                               " points)");
+  std::ifstream in(path, std::ios::binary);
+  std::string got(header.size(), '\0');
+  if (!in || !in.read(got.data(), static_cast<std::streamsize>(got.size())) || got != header)
+    throw InputError(file, "PCD header: not the header radarslam writes for the manifest's " +
+                               std::to_string(layers.cloud_points) + " points");
+  std::vector<std::uint8_t> data;
+  for (const CloudTileEntry& t : index) {
+    data.resize(t.count * 16);
+    in.seekg(static_cast<std::streamoff>(header.size() + t.first * 16));
+    if (!in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(data.size())))
+      throw InputError(file,
+                       "read failed at tile (" + std::to_string(t.tx) + ", " + std::to_string(t.ty) + ")");
+    const std::string sha = sha256Hex({data.data(), data.size()});
+    if (sha != t.sha256)
+      throw InputError(file, "checksum mismatch in tile (" + std::to_string(t.tx) + ", " +
+                                 std::to_string(t.ty) + "): SHA-256 " + sha + ", " + kCloudTilesLayerFile +
+                                 " says " + t.sha256 + ": layer file is corrupt");
+    fn(t, data);
+  }
 }
 
 std::vector<std::int8_t> readOctomapLayer(const fs::path& map_dir, const MapLayersManifest& layers) {

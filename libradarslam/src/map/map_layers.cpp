@@ -66,6 +66,9 @@ void loadParams(const YamlParams& yaml, MapLayerParams& p) {
   p.octomap.fill = parseFill(yaml, fill);
   yaml.get("octomap_resolution_m", p.octomap.resolution_m, Range::above(0, 100));
   yaml.get("octomap_max_range_m", p.octomap.max_range_m, Range::closed(-1, 1e6));
+  yaml.get("grid_tile_cells", p.tiling.tile_cells, Range::closed(16, 8192));
+  yaml.get("grid_tile_above_cells", p.tiling.tile_above_cells, Range::closed(1, 1e12));
+  yaml.get("grid_overview_max_cells", p.tiling.overview_max_cells, Range::closed(1, 1e9));
 }
 
 const LayerFileEntry& MapLayersManifest::file(const std::string& key) const {
@@ -93,8 +96,11 @@ MapLayersManifest writeMapLayers(const KeyframeMap& map, const fs::path& map_dir
   m.params = params;
   const std::string prefix = std::string(kLayersDir) + "/";
 
-  // Grid first; its raster also makes the OctoMap when the fill and resolution allow.
-  std::optional<OccupancyRaster> raster = buildOccupancy(map, params.grid);
+  // Grid first; its raster also makes the OctoMap when the fill and resolution allow. A large
+  // grid is tiled for publishing, so it may exceed what one image should hold.
+  GridExportParams grid_params = params.grid;
+  grid_params.max_cells = std::max(grid_params.max_cells, kMaxLayerGridCells);
+  std::optional<OccupancyRaster> raster = buildOccupancy(map, grid_params);
   m.grid_width = static_cast<std::uint32_t>(raster->width);
   m.grid_height = static_cast<std::uint32_t>(raster->height);
   m.grid_origin_x = raster->x_min;
@@ -105,26 +111,62 @@ MapLayersManifest writeMapLayers(const KeyframeMap& map, const fs::path& map_dir
     const std::string pgm = gridPgm(cells, m.grid_width, m.grid_height);
     writeSynced(dir / kGridLayerFile, pgm);
     m.files.push_back(entry("grid", prefix + kGridLayerFile, pgm));
+    const std::string yaml = gridRosYaml(kGridLayerFile, static_cast<float>(params.grid.resolution_m),
+                                         m.grid_origin_x, m.grid_origin_y);
+    writeSynced(dir / kGridYamlLayerFile, yaml);
+    m.files.push_back(entry("grid_yaml", prefix + kGridYamlLayerFile, yaml));
+    // A large grid: its overview and tile index too (map/grid_tiles.h).
+    m.tiling = gridTiling(m.grid_width, m.grid_height, params.tiling);
+    if (m.tiling.tiled()) {
+      const std::vector<std::int8_t> overview = overviewCells(cells, m.tiling);
+      m.grid_overview_cells_sha256 =
+          sha256Hex({reinterpret_cast<const unsigned char*>(overview.data()), overview.size()});
+      const std::string opgm = gridPgm(overview, m.tiling.overview_width, m.tiling.overview_height);
+      writeSynced(dir / kGridOverviewLayerFile, opgm);
+      m.files.push_back(entry("grid_overview", prefix + kGridOverviewLayerFile, opgm));
+      const std::string index =
+          std::string(kGridTilesHeader) + "\n" + gridTileIndexText(gridTileIndex(cells, m.tiling));
+      writeSynced(dir / kGridTilesLayerFile, index);
+      m.files.push_back(entry("grid_tiles", prefix + kGridTilesLayerFile, index));
+    }
   }
-  const std::string yaml = gridRosYaml(kGridLayerFile, static_cast<float>(params.grid.resolution_m),
-                                       m.grid_origin_x, m.grid_origin_y);
-  writeSynced(dir / kGridYamlLayerFile, yaml);
-  m.files.push_back(entry("grid_yaml", prefix + kGridYamlLayerFile, yaml));
 
   const bool share = params.octomap.fill == OctomapExportParams::Fill::grid_columns &&
                      params.octomap.resolution_m == params.grid.resolution_m;
   if (!share) raster.reset();
 
   {
-    const std::string pcd = cloudPcd(map, &m.cloud_points);
-    writeSynced(dir / kCloudLayerFile, pcd);
-    m.files.push_back(entry("cloud", prefix + kCloudLayerFile, pcd));
+    std::vector<std::uint8_t> data = cloudPayload(map);
+    m.cloud_points = data.size() / 16;
+    std::vector<CloudTileEntry> tiles;  // a tiled grid: the cloud sorted along the same tiles
+    if (m.tiling.tiled())
+      tiles = sortCloudByTile(data, m.tiling, params.grid.resolution_m, m.grid_origin_x, m.grid_origin_y);
+    const std::string header = cloudPcdHeader(m.cloud_points);
+    {
+      std::ofstream out(dir / kCloudLayerFile, std::ios::binary | std::ios::trunc);
+      out.write(header.data(), static_cast<std::streamsize>(header.size()));
+      out.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size()));
+      out.close();
+      if (!out)
+        throw InputError((dir / kCloudLayerFile).string(), "write failed (disk full or no permission?)");
+      fsyncFile(dir / kCloudLayerFile);
+    }
+    Sha256 sha;
+    sha.update(header);
+    sha.update({data.data(), data.size()});
+    m.files.push_back({"cloud", prefix + kCloudLayerFile, header.size() + data.size(), sha.hexDigest()});
+    if (m.tiling.tiled()) {
+      m.cloud_data_sha256 = sha256Hex({data.data(), data.size()});
+      const std::string index = std::string(kCloudTilesHeader) + "\n" + cloudTileIndexText(tiles);
+      writeSynced(dir / kCloudTilesLayerFile, index);
+      m.files.push_back(entry("cloud_tiles", prefix + kCloudTilesLayerFile, index));
+    }
   }
 
   std::string bt;
   if (params.octomap.fill == OctomapExportParams::Fill::grid_columns) {
     if (!raster) {
-      GridExportParams g = params.grid;
+      GridExportParams g = grid_params;
       g.resolution_m = params.octomap.resolution_m;
       raster = buildOccupancy(map, g);
     }
@@ -157,13 +199,19 @@ std::string layersManifestText(const MapLayersManifest& l) {
     << "  octomap_fill: " << fillName(p.octomap.fill) << "\n"
     << "  octomap_resolution_m: " << fmtDouble(p.octomap.resolution_m) << "\n"
     << "  octomap_max_range_m: " << fmtDouble(p.octomap.max_range_m) << "\n"
+    << "  grid_tile_cells: " << p.tiling.tile_cells << "\n"
+    << "  grid_tile_above_cells: " << p.tiling.tile_above_cells << "\n"
+    << "  grid_overview_max_cells: " << p.tiling.overview_max_cells << "\n"
     << "  grid_width: " << l.grid_width << "\n"
     << "  grid_height: " << l.grid_height << "\n"
     << "  grid_origin_x: " << fmtDouble(l.grid_origin_x) << "\n"
     << "  grid_origin_y: " << fmtDouble(l.grid_origin_y) << "\n"
-    << "  grid_cells_sha256: " << mapcodec::yamlQuoted(l.grid_cells_sha256) << "\n"
-    << "  cloud_points: " << l.cloud_points << "\n"
-    << "  files:\n";
+    << "  grid_cells_sha256: " << mapcodec::yamlQuoted(l.grid_cells_sha256) << "\n";
+  if (l.tiling.tiled())
+    m << "  grid_overview_cells_sha256: " << mapcodec::yamlQuoted(l.grid_overview_cells_sha256) << "\n";
+  m << "  cloud_points: " << l.cloud_points << "\n";
+  if (l.tiling.tiled()) m << "  cloud_data_sha256: " << mapcodec::yamlQuoted(l.cloud_data_sha256) << "\n";
+  m << "  files:\n";
   for (const auto& f : l.files)
     m << "    " << f.key << ":\n"
       << "      name: " << mapcodec::yamlQuoted(f.name) << "\n"
@@ -176,11 +224,13 @@ std::optional<MapLayersManifest> parseLayersManifest(const YamlParams& manifest,
   if (!manifest.has("layers")) return std::nullopt;
   const YamlParams y = manifest.section("layers");
   MapLayersManifest l;
+  // Saved before tiling existed (no grid_tile_cells key): never tiled.
+  if (!y.has("grid_tile_cells")) l.params.tiling.tile_above_cells = static_cast<std::size_t>(1e12);
   loadParams(y, l.params);
   unsigned w = 0, h = 0;
   y.get("grid_width", w);
   y.get("grid_height", h);
-  if (w == 0 || h == 0 || static_cast<std::uint64_t>(w) * h > l.params.grid.max_cells)
+  if (w == 0 || h == 0 || static_cast<std::uint64_t>(w) * h > kMaxLayerGridCells)
     throw InputError(origin, "layers: grid_width/grid_height missing or out of range");
   l.grid_width = w;
   l.grid_height = h;
@@ -188,21 +238,38 @@ std::optional<MapLayersManifest> parseLayersManifest(const YamlParams& manifest,
   y.get("grid_origin_y", l.grid_origin_y);
   if (!std::isfinite(l.grid_origin_x) || !std::isfinite(l.grid_origin_y))
     throw InputError(origin, "layers: grid origin is not finite");
+  auto isHex64 = [](const std::string& s) {
+    return s.size() == 64 && s.find_first_not_of("0123456789abcdef") == std::string::npos;
+  };
   y.get("grid_cells_sha256", l.grid_cells_sha256);
-  if (!l.grid_cells_sha256.empty() &&
-      (l.grid_cells_sha256.size() != 64 ||
-       l.grid_cells_sha256.find_first_not_of("0123456789abcdef") != std::string::npos))
+  if (!l.grid_cells_sha256.empty() && !isHex64(l.grid_cells_sha256))
     throw InputError(origin, "layers.grid_cells_sha256: expected 64 lower-case hex digits");
+  l.tiling = gridTiling(w, h, l.params.tiling);
+  if (l.tiling.tiled()) {
+    y.get("grid_overview_cells_sha256", l.grid_overview_cells_sha256);
+    if (!isHex64(l.grid_overview_cells_sha256))
+      throw InputError(origin,
+                       "layers.grid_overview_cells_sha256: expected 64 lower-case hex digits (a tiled grid)");
+  }
   std::string points = "0";
   y.get("cloud_points", points);
   const auto n = parseCount(points);
   if (!n || *n > 0xffffffffULL) throw InputError(origin, "layers.cloud_points: expected an integer < 2^32");
   l.cloud_points = *n;
+  if (l.tiling.tiled()) {
+    y.get("cloud_data_sha256", l.cloud_data_sha256);
+    if (!isHex64(l.cloud_data_sha256))
+      throw InputError(origin, "layers.cloud_data_sha256: expected 64 lower-case hex digits (a tiled map)");
+  }
   const YamlParams files = y.section("files");
-  for (const auto& [key, name] : {std::pair{"grid", kGridLayerFile},
-                                  {"grid_yaml", kGridYamlLayerFile},
-                                  {"cloud", kCloudLayerFile},
-                                  {"octomap", kOctomapLayerFile}}) {
+  std::vector<std::pair<const char*, const char*>> keys{{"grid", kGridLayerFile},
+                                                        {"grid_yaml", kGridYamlLayerFile}};
+  if (l.tiling.tiled())
+    keys.insert(keys.end(), {{"grid_overview", kGridOverviewLayerFile}, {"grid_tiles", kGridTilesLayerFile}});
+  keys.emplace_back("cloud", kCloudLayerFile);
+  if (l.tiling.tiled()) keys.emplace_back("cloud_tiles", kCloudTilesLayerFile);
+  keys.emplace_back("octomap", kOctomapLayerFile);
+  for (const auto& [key, name] : keys) {
     const YamlParams f = files.section(key);
     LayerFileEntry e;
     e.key = key;

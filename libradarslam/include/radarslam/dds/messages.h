@@ -18,6 +18,8 @@ inline constexpr const char* kCloudMapTopic = "rt/radarslam/cloud_map";
 inline constexpr const char* kOctomapTopic = "rt/radarslam/octomap";
 inline constexpr const char* kMapInfoTopic = "rt/radarslam/map_info";
 inline constexpr const char* kMapFilesTopic = "rt/radarslam/map_files";
+inline constexpr const char* kMapTilesTopic = "rt/radarslam/map_tiles";
+inline constexpr const char* kCloudMapTilesTopic = "rt/radarslam/cloud_map_tiles";
 inline constexpr const char* kPoseTopic = "rt/radarslam/pose";
 inline constexpr const char* kLocalizationStatusTopic = "rt/radarslam/localization_status";
 inline constexpr const char* kRadarScanTopic = "rt/radarslam/radar_scan";
@@ -96,17 +98,38 @@ struct PoseWithCovarianceStampedMsg {
   bool operator==(const PoseWithCovarianceStampedMsg&) const = default;
 };
 
-/// radarslam/MapInfo: which map the server publishes; grid_sha256 ties it to the rt/map grid.
+/// radarslam/MapInfo: which map the server publishes; grid_sha256 ties it to the rt/map grid (or,
+/// for a tiled grid, to the grid its tiles make up; docs/dds.md, "Tiled grids").
 struct MapInfoMsg {
   HeaderMsg header;
   std::string map_name;
   std::uint32_t format_version = 0;
   std::uint32_t keyframes = 0;
   std::uint32_t revision = 0;   ///< increments on every (re)load by the server
-  std::string grid_sha256;      ///< SHA-256 (hex) of OccupancyGridMsg::data
+  std::string grid_sha256;      ///< SHA-256 (hex) of the full grid's cells (OccupancyGridMsg::data)
   std::string manifest_sha256;  ///< SHA-256 (hex) of the map's manifest.yaml
   TimeMsg created;              ///< map creation time
+  std::uint32_t grid_width = 0, grid_height = 0;  ///< the full-resolution grid [cells]
+  std::uint32_t tile_cells = 0;  ///< > 0: rt/map is an overview, the grid comes as MapTileMsg
+  std::uint32_t tiles_x = 0, tiles_y = 0;
+  std::vector<std::uint32_t> tile_indices;  ///< tile_y * tiles_x + tile_x of each tile sent, ascending
+  std::vector<std::uint8_t> tile_sha256;    ///< 32 bytes (binary SHA-256 of its cells) per tile
+  std::string overview_sha256;              ///< SHA-256 (hex) of rt/map's cells when tiled
+  /// > 0: the cloud comes as this many PointCloud2 tiles on rt/radarslam/cloud_map_tiles, in order
+  std::uint32_t cloud_tile_count = 0;
+  std::uint32_t cloud_points = 0;  ///< points of all cloud tiles
+  std::string cloud_sha256;        ///< SHA-256 (hex) of the cloud tiles' data, concatenated in order
   bool operator==(const MapInfoMsg&) const = default;
+};
+
+/// radarslam/MapTile: one tile of a tiled grid (rt/radarslam/map_tiles).
+struct MapTileMsg {
+  HeaderMsg header;  ///< = MapInfo.header of the publication
+  std::uint32_t revision = 0;
+  std::uint32_t tile_x = 0, tile_y = 0, tile_cells = 0, tile_count = 0;
+  std::string cells_sha256;  ///< SHA-256 (hex) of grid.data
+  OccupancyGridMsg grid;     ///< the tile as a grid; origin = the tile's corner
+  bool operator==(const MapTileMsg&) const = default;
 };
 
 /// radarslam/MapFileChunk: one piece of one file of a map directory (rt/radarslam/map_files;

@@ -20,7 +20,9 @@ struct GridExportParams {
   double log_odds_hit = 0.85;   ///< per return in a cell (occupied evidence)
   double log_odds_miss = -0.4;  ///< per ray crossing a cell before its first return
   double log_odds_clamp = 3.5;
-  std::size_t max_cells = 100'000'000;  ///< refuse absurd grids (InputError)
+  /// Refuse absurd grids (InputError): 1e8 cells (4 km² at 0.2 m) for the single-image exports;
+  /// the saved layers, tiled (map/grid_tiles.h), allow kMaxLayerGridCells.
+  std::size_t max_cells = 100'000'000;
 };
 
 /// Occupancy as P(occupied) per cell, row 0 = lowest y; 0.5 = never observed.
@@ -36,6 +38,13 @@ struct OccupancyRaster {
 /// up to the nearest return get a miss, every return cell gets a hit (radar returns several peaks
 /// per azimuth, all of them are obstacles; the space beyond the first one is not known to be free).
 OccupancyRaster buildOccupancy(const KeyframeMap& map, const GridExportParams& params = {});
+
+/// Cells a tiled grid layer may have: 1e9 (40 km² at 0.2 m; building it takes ~17 bytes per cell).
+inline constexpr std::size_t kMaxLayerGridCells = 1'000'000'000;
+
+/// The smallest multiple of params.resolution_m at which the map's grid has at most
+/// params.max_cells cells (params.resolution_m itself for maps that fit).
+double fittingGridResolution(const KeyframeMap& map, const GridExportParams& params);
 
 /// Writes STEM.png, STEM.pgm, STEM.png.yaml, STEM.pgm.yaml (ROS map_server: image, resolution,
 /// origin, negate 0, occupied_thresh 0.65, free_thresh 0.196; pixel = 255 * P(free)) and

@@ -5,6 +5,13 @@
 //   layers/grid.pgm   8-bit P5, top row = highest y, pixel = round(255 * (100 - cell) / 100),
 //                     205 = unknown (as the map client writes it); exact inverse to the cells
 //   layers/grid.yaml  ROS map_server YAML of grid.pgm (mode scale)
+//   layers/grid_overview.pgm, layers/grid_tiles.txt   only for a grid large enough to be tiled
+//                     (map/grid_tiles.h): the downsampled overview (same pixel coding) and the
+//                     index of the tiles with a known cell ("radarslam grid tiles 1", then
+//                     "tx ty sha256" per tile)
+//   layers/cloud_tiles.txt   with a tiled grid: cloud.pcd holds the points sorted by tile
+//                     (map/cloud_tiles.h), this file their ranges ("radarslam cloud tiles 1",
+//                     then "tx ty first count sha256" per tile)
 //   layers/cloud.pcd  PCD v0.7 DATA binary, x y z intensity FLOAT32: the data is the
 //                     sensor_msgs/PointCloud2 payload byte for byte
 //   layers/map.bt     OctoMap .bt: the body is the octomap_msgs/Octomap (binary) data
@@ -17,6 +24,7 @@
 #include <vector>
 
 #include "radarslam/core/yaml_params.h"
+#include "radarslam/map/grid_tiles.h"
 #include "radarslam/map/keyframe_map.h"
 #include "radarslam/map/map_exports.h"
 
@@ -26,6 +34,7 @@ namespace radarslam {
 struct MapLayerParams {
   GridExportParams grid;        ///< grid_resolution_m, grid_margin_m, grid_log_odds_{hit,miss,clamp}
   OctomapExportParams octomap;  ///< octomap_fill, octomap_resolution_m, octomap_max_range_m
+  GridTilingParams tiling;      ///< grid_tile_cells, grid_tile_above_cells, grid_overview_max_cells
 };
 /// Reads the keys of the `map_layers` section (all optional).
 void loadParams(const YamlParams& yaml, MapLayerParams& params);
@@ -46,8 +55,16 @@ struct MapLayersManifest {
   /// SHA-256 of the grid's cells (the OccupancyGrid data, = MapInfo.grid_sha256), so a server need
   /// not hash them again; empty if the manifest has none.
   std::string grid_cells_sha256;
+  /// The grid's tiles and overview (tiling.tiled(): files grid_overview and grid_tiles exist).
+  /// A manifest written before tiling existed has no grid_tile_cells key: never tiled.
+  GridTiling tiling;
+  std::string grid_overview_cells_sha256;  ///< SHA-256 of the overview's cells (tiled grids)
   std::uint64_t cloud_points = 0;
-  std::vector<LayerFileEntry> files;  ///< grid, grid_yaml, cloud, octomap (in this order)
+  /// SHA-256 of the cloud's data section (tiled maps: the points sorted by tile, as the tiles
+  /// reassemble it)
+  std::string cloud_data_sha256;
+  /// grid, grid_yaml, [grid_overview, grid_tiles,] cloud, [cloud_tiles,] octomap (in this order)
+  std::vector<LayerFileEntry> files;
   const LayerFileEntry& file(const std::string& key) const;
 };
 
