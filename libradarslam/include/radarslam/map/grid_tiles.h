@@ -12,11 +12,9 @@
 namespace radarslam {
 
 struct GridTilingParams {
-  std::size_t tile_cells = 1024;  ///< tile edge [cells] (1 MiB of cells); valid [16, 8192]
-  /// Grids with more cells are tiled (16 Mi cells = a 16 MiB /map sample); valid [1, 1e12]
-  std::size_t tile_above_cells = std::size_t{1} << 24;
-  /// The overview has at most this many cells (4 Mi: 2048 x 2048); valid [1, 1e9]
-  std::size_t overview_max_cells = std::size_t{1} << 22;
+  std::size_t tile_cells = 1024;             ///< tile edge [cells] (1 MiB of cells)
+  std::size_t tile_above_cells = 16777216;   ///< grids with more cells are tiled (a 16 MiB /map sample)
+  std::size_t overview_max_cells = 4194304;  ///< the overview's cells at most (2048 x 2048)
 };
 
 /// The geometry of a tiled grid (all zero `tile_cells` if the grid is not tiled).
