@@ -189,6 +189,57 @@ TEST(FastDdsInterop, LateJoinerReceivesEveryLatchedLayer) {
   EXPECT_EQ(server.wait(15), 0) << server.err();
 }
 
+TEST(FastDdsInterop, LateJoinerReceivesEveryTileOfATiledMap) {
+  SmallWorld w;
+  ASSERT_FALSE(HasFailure());
+  // The same drive's map with its 1969 x 1658 grid tiled (256-cell tiles, overview downsampled).
+  const fs::path tiled = w.tmp.path() / "tiled", config = w.tmp.path() / "tiling.yaml";
+  std::ofstream(config) << "map_layers:\n  grid_tile_cells: 256\n  grid_tile_above_cells: 1\n"
+                           "  grid_overview_max_cells: 500000\n";
+  ASSERT_EQ(runCli({"map-synth", w.data.string(), "-o", tiled.string(), "--config", config.string()},
+                   w.tmp.path() / "synth_tiled"),
+            0)
+      << test::readText(w.tmp.path() / "synth_tiled.err");
+  const auto grid_index = rows(tiled / "layers" / "grid_tiles.txt");  // first row: the format line
+  const auto cloud_index = rows(tiled / "layers" / "cloud_tiles.txt");
+  ASSERT_GT(grid_index.size(), 2u);
+  ASSERT_GT(cloud_index.size(), 2u);
+  const unsigned dom = test::testDomainId(21);
+  Child server({RADARSLAM_MAP_SERVER, "--map", tiled.string(), "--domain", std::to_string(dom)},
+               w.tmp.path() / "server");
+  ASSERT_TRUE(server.waitForLog("published map 'tiled' revision 1", 30)) << server.err();
+  Child fast(fastddsArgs(dom, "map,map_info,map_tiles,cloud_tiles"), w.tmp.path() / "fastdds");
+  ASSERT_EQ(fast.wait(kClientTimeoutS + 10), 0) << fast.out() << fast.err();
+  const auto lines = parse(fast.out());
+  const auto got = received(lines);
+  const auto& info = got.at("map_info").kv;
+  EXPECT_EQ(info.at("tile_cells"), "256");
+  EXPECT_EQ(info.at("tiles"), std::to_string(grid_index.size() - 1));
+  EXPECT_EQ(got.at("map").kv.at("sha256"), info.at("overview_sha256"));  // /map is the overview
+  // Every grid tile as Fast DDS decoded it: cells hashed by OpenSSL = the tile index on disk.
+  std::map<std::string, std::string> want;  // "tx ty" -> sha256
+  for (std::size_t i = 1; i < grid_index.size(); ++i)
+    want[grid_index[i][0] + " " + grid_index[i][1]] = grid_index[i][2];
+  std::size_t tiles = 0;
+  std::vector<std::string> cloud_shas;
+  for (const auto& l : lines) {
+    if (l.kind != "received") continue;
+    if (l.what == "map_tile") {
+      ++tiles;
+      EXPECT_EQ(l.kv.at("sha256"), want[l.kv.at("tile_x") + " " + l.kv.at("tile_y")]) << l.kv.at("tile_x");
+      EXPECT_EQ(l.kv.at("sha256"), l.kv.at("cells_sha256"));
+      EXPECT_EQ(l.kv.at("stamp"), info.at("stamp"));
+    } else if (l.what == "cloud_tile") {
+      cloud_shas.push_back(l.kv.at("sha256"));
+    }
+  }
+  EXPECT_EQ(tiles, grid_index.size() - 1);
+  ASSERT_EQ(cloud_shas.size(), cloud_index.size() - 1);
+  for (std::size_t i = 0; i < cloud_shas.size(); ++i) EXPECT_EQ(cloud_shas[i], cloud_index[i + 1][4]) << i;
+  server.signal(SIGTERM);
+  EXPECT_EQ(server.wait(15), 0) << server.err();
+}
+
 TEST(FastDdsInterop, ReceivesEveryPoseOfLocalize) {
   SmallWorld w;
   ASSERT_FALSE(HasFailure());

@@ -7,7 +7,7 @@
 //   pose: RELIABLE, VOLATILE, KEEP_LAST 10
 // It shares no code with radarslam (SHA-256 from OpenSSL, CDR from Fast CDR).
 //
-// Usage: fastdds_interop_client --domain N [--topics map,cloud,octomap,map_info,pose]
+// Usage: fastdds_interop_client --domain N [--topics map,cloud,octomap,map_info,map_tiles,cloud_tiles,pose]
 //                               [--timeout S] [--poses N]
 // One line per received sample on stdout (flushed at once), "key=value" fields:
 //   received map t_ms=... stamp=SEC.NANOSEC frame=map width=... height=... resolution=...
@@ -17,9 +17,15 @@
 //   received octomap t_ms=... stamp=... frame=... id=OcTree binary=1 resolution=... data_bytes=...
 //            sha256=HEX
 //   received map_info t_ms=... stamp=... map_name=... revision=... keyframes=... grid_sha256=HEX
+//            tile_cells=... tiles=... overview_sha256=HEX cloud_tile_count=... cloud_sha256=HEX
+//   received map_tile t_ms=... stamp=... tile_x=... tile_y=... tile_count=... cells_sha256=HEX
+//            width=... height=... origin_x=... origin_y=... data_bytes=... sha256=HEX   (every tile)
+//   received cloud_tile t_ms=... stamp=... width=... data_bytes=... sha256=HEX     (every tile)
 //   pose t_ms=... stamp=SEC.NANOSEC frame=map x=... y=... z=... qx=... qy=... qz=... qw=... cov=c0,..,c35
 // plus "matched TOPIC t_ms=..." when a writer matched a reader (t_ms: since the participant was
-// created). Latched topics count once (their first sample). The client exits
+// created). Latched topics count once (their first sample), except the tile topics: every tile of
+// the publication (map_tiles: the tile_count every tile carries; cloud_tiles: MapInfo's
+// cloud_tile_count, so map_info must be subscribed too). The client exits
 //   0 once every requested topic was received (pose: --poses N samples; without --poses it keeps
 //     receiving poses until SIGINT/SIGTERM or the timeout, and then needs at least one),
 //   2 when the timeout expired (or a signal came) before that, 1 on bad arguments or a DDS error.
@@ -161,11 +167,11 @@ fdds::DomainParticipantQos participantQos(unsigned domain) {
   return q;
 }
 
-fdds::DataReaderQos readerQos(bool latched) {
+fdds::DataReaderQos readerQos(bool latched, bool keep_all = false) {
   fdds::DataReaderQos q = fdds::DATAREADER_QOS_DEFAULT;
   q.reliability().kind = fdds::RELIABLE_RELIABILITY_QOS;
   q.durability().kind = latched ? fdds::TRANSIENT_LOCAL_DURABILITY_QOS : fdds::VOLATILE_DURABILITY_QOS;
-  q.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
+  q.history().kind = keep_all ? fdds::KEEP_ALL_HISTORY_QOS : fdds::KEEP_LAST_HISTORY_QOS;
   q.history().depth = latched ? 1 : 10;
   // Large samples (a 16 MB grid): grow the payload buffers on demand, as rmw_fastrtps does.
   q.endpoint().history_memory_policy = rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
@@ -180,6 +186,8 @@ struct Sub {
   fdds::DataReader* reader = nullptr;
   std::size_t received = 0;
   bool matched = false;
+  bool every = false;                                 // a tile topic: every sample counts
+  const std::size_t* expected = nullptr;              // ... and this many make it complete (0: not known yet)
   std::function<bool(fdds::DataReader*, bool)> take;  // takes one sample, prints it if asked; false if none
 };
 
@@ -201,7 +209,7 @@ std::function<bool(fdds::DataReader*, bool)> taker(std::function<void(const Msg&
 int usage(const std::string& why) {
   std::fprintf(stderr,
                "fastdds_interop_client: %s\nusage: fastdds_interop_client --domain N "
-               "[--topics map,cloud,octomap,map_info,pose] [--timeout S] [--poses N]\n",
+               "[--topics map,cloud,octomap,map_info,map_tiles,cloud_tiles,pose] [--timeout S] [--poses N]\n",
                why.c_str());
   return 1;
 }
@@ -248,16 +256,19 @@ int main(int argc, char** argv) {
   fdds::Subscriber* subscriber = participant->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
 
   std::vector<Sub> subs;
+  std::size_t map_tiles_expected = 0, cloud_tiles_expected = 0;  // from the samples themselves
   auto add = [&](const std::string& name, const char* topic, fdds::TypeSupport type, bool latched,
-                 std::function<bool(fdds::DataReader*, bool)> take) -> bool {
+                 std::function<bool(fdds::DataReader*, bool)> take,
+                 const std::size_t* every = nullptr) -> bool {
     type.register_type(participant);
     fdds::Topic* t = participant->create_topic(topic, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
-    fdds::DataReader* r = t ? subscriber->create_datareader(t, readerQos(latched)) : nullptr;
+    fdds::DataReader* r =
+        t ? subscriber->create_datareader(t, readerQos(latched, every != nullptr)) : nullptr;
     if (!r) {
       std::fprintf(stderr, "fastdds_interop_client: cannot create a reader on %s\n", topic);
       return false;
     }
-    subs.push_back(Sub{name, latched, r, 0, false, std::move(take)});
+    subs.push_back(Sub{name, latched, r, 0, false, every != nullptr, every, std::move(take)});
     return true;
   };
 
@@ -312,15 +323,54 @@ int main(int argc, char** argv) {
       using Msg = radarslam::msg::dds_::MapInfo_;
       ok &= add(name, "rt/radarslam/map_info",
                 fdds::TypeSupport(new radarslam::msg::dds_::MapInfo_PubSubType()), true,
-                taker<Msg>([](const Msg& m) {
+                taker<Msg>([&cloud_tiles_expected](const Msg& m) {
+                  cloud_tiles_expected = m.cloud_tile_count();
                   Line("received map_info")
                       .header(m.header())
                       .kv("map_name", m.map_name())
                       .kv("revision", std::to_string(m.revision()))
                       .kv("keyframes", std::to_string(m.keyframes()))
                       .kv("grid_sha256", m.grid_sha256())
+                      .kv("tile_cells", std::to_string(m.tile_cells()))
+                      .kv("tiles", std::to_string(m.tile_indices().size()))
+                      .kv("overview_sha256", m.overview_sha256().empty() ? "-" : m.overview_sha256())
+                      .kv("cloud_tile_count", std::to_string(m.cloud_tile_count()))
+                      .kv("cloud_sha256", m.cloud_sha256().empty() ? "-" : m.cloud_sha256())
                       .emit();
                 }));
+    } else if (name == "map_tiles") {
+      using Msg = radarslam::msg::dds_::MapTile_;
+      ok &= add(name, "rt/radarslam/map_tiles",
+                fdds::TypeSupport(new radarslam::msg::dds_::MapTile_PubSubType()), true,
+                taker<Msg>([&map_tiles_expected](const Msg& m) {
+                  map_tiles_expected = m.tile_count();
+                  const auto& info = m.grid().info();
+                  Line("received map_tile")
+                      .header(m.header())
+                      .kv("tile_x", std::to_string(m.tile_x()))
+                      .kv("tile_y", std::to_string(m.tile_y()))
+                      .kv("tile_count", std::to_string(m.tile_count()))
+                      .kv("cells_sha256", m.cells_sha256())
+                      .kv("width", std::to_string(info.width()))
+                      .kv("height", std::to_string(info.height()))
+                      .kv("origin_x", num(info.origin().position().x()))
+                      .kv("origin_y", num(info.origin().position().y()))
+                      .payload(m.grid().data())
+                      .emit();
+                }),
+                &map_tiles_expected);
+    } else if (name == "cloud_tiles") {
+      using Msg = sensor_msgs::msg::dds_::PointCloud2_;
+      ok &= add(name, "rt/radarslam/cloud_map_tiles",
+                fdds::TypeSupport(new sensor_msgs::msg::dds_::PointCloud2_PubSubType()), true,
+                taker<Msg>([](const Msg& m) {
+                  Line("received cloud_tile")
+                      .header(m.header())
+                      .kv("width", std::to_string(m.width()))
+                      .payload(m.data())
+                      .emit();
+                }),
+                &cloud_tiles_expected);
     } else if (name == "pose") {
       using Msg = geometry_msgs::msg::dds_::PoseWithCovarianceStamped_;
       ok &= add(name, "rt/radarslam/pose",
@@ -358,6 +408,7 @@ int main(int argc, char** argv) {
     const auto deadline = g_t0 + std::chrono::duration<double>(timeout_s);
     auto complete = [&](bool stopping) {
       for (const auto& s : subs) {
+        if (s.every && (*s.expected == 0 || s.received < *s.expected)) return false;
         if (s.latched && s.received == 0) return false;
         if (!s.latched && (want_poses > 0 ? s.received < static_cast<std::size_t>(want_poses)
                                           : (!stopping || s.received == 0)))
@@ -378,7 +429,9 @@ int main(int argc, char** argv) {
           Line((std::string("matched ") + s.name).c_str()).emit();
         }
         // A latched topic is printed and counted once (its first sample); later ones are dropped.
-        for (bool first = !s.latched || s.received == 0; s.take(s.reader, first); first = !s.latched)
+        // A tile topic: every sample.
+        for (bool first = s.every || !s.latched || s.received == 0; s.take(s.reader, first);
+             first = s.every || !s.latched)
           if (first) ++s.received;
       }
       if (complete(false)) {
