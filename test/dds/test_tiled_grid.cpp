@@ -88,6 +88,9 @@ TEST(TiledGridWriter, RejectsTilesMapInfoDoesNotVouchForAndLeavesNothingBehind) 
     EXPECT_THROW(writer.finish(0, 0), InputError);  // incomplete
   }
   EXPECT_TRUE(fs::is_empty(tmp.path()));  // the temporary image is removed, nothing else written
+  dds::MapInfoMsg huge = g.info;          // would make a 4 GB image before any tile arrived
+  huge.grid_width = huge.grid_height = 65536;
+  EXPECT_THROW(dds::TiledGridWriter(tmp.path(), huge), InputError);
   dds::MapInfoMsg lying = g.info;
   lying.grid_sha256 = std::string(64, 'f');
   {

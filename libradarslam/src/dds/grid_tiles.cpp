@@ -13,6 +13,7 @@
 #include "radarslam/core/errors.h"
 #include "radarslam/dds/map_messages.h"
 #include "radarslam/map/layer_files.h"
+#include "radarslam/map/map_exports.h"
 #include "radarslam/map/sha256.h"
 
 namespace radarslam::dds {
@@ -117,6 +118,13 @@ TiledGridWriter::TiledGridWriter(const fs::path& dir, const MapInfoMsg& info) : 
   if (info.tile_cells < 16 || info.grid_width == 0 || info.grid_height == 0 ||
       info.tile_sha256.size() != 32 * n || info.grid_sha256.size() != 64)
     throw InputError("MapInfo", "not a consistent description of a tiled grid");
+  // The image is created at full size before any tile arrives: a hostile MapInfo must not make
+  // it fill the disk.
+  if (std::uint64_t{info.grid_width} * info.grid_height > kMaxLayerGridCells)
+    throw InputError("MapInfo", "a grid of " + std::to_string(info.grid_width) + " x " +
+                                    std::to_string(info.grid_height) +
+                                    " cells is larger than any map layer (" +
+                                    std::to_string(kMaxLayerGridCells) + " cells)");
   for (std::size_t i = 0; i < n; ++i)
     if (info.tile_indices[i] >= std::uint64_t{tiling_.tiles_x} * tiling_.tiles_y ||
         (i > 0 && info.tile_indices[i] <= info.tile_indices[i - 1]))
