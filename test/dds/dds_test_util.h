@@ -27,7 +27,8 @@ extern char** environ;
 
 namespace radarslam::test {
 
-/// A DDS domain id for this test: `index` (0..24) is distinct per test, the pid spreads runs of the
+/// A DDS domain id for this test: `index` (0..24) is distinct per test (test/dds: 0..20, the Fast DDS
+/// interop tests 21..24), the pid spreads runs of the
 /// suite. Two tests running at the same time never share an id: equal ids need equal indices
 /// (the pid part is a multiple of 25), i.e. the same test. Ids stay within 1..200 (Cyclone: < 233).
 inline unsigned testDomainId(unsigned index) {

@@ -122,7 +122,7 @@ std::vector<std::string> fastddsArgs(unsigned domain, const std::string& topics)
 TEST(FastDdsInterop, LateJoinerReceivesEveryLatchedLayer) {
   SmallWorld w;
   ASSERT_FALSE(HasFailure());
-  const unsigned dom = test::testDomainId(13);
+  const unsigned dom = test::testDomainId(22);
   Child server({RADARSLAM_MAP_SERVER, "--map", w.map.string(), "--domain", std::to_string(dom)},
                w.tmp.path() / "server");
   ASSERT_TRUE(server.waitForLog("published map 'map' revision 1", 30)) << server.err();
@@ -243,7 +243,7 @@ TEST(FastDdsInterop, LateJoinerReceivesEveryTileOfATiledMap) {
 TEST(FastDdsInterop, ReceivesEveryPoseOfLocalize) {
   SmallWorld w;
   ASSERT_FALSE(HasFailure());
-  const unsigned dom = test::testDomainId(14);
+  const unsigned dom = test::testDomainId(23);
   // The Fast DDS reader first (VOLATILE, as a ROS 2 subscriber: it sees what is published after it
   // matched); localize waits for it (--wait-subscribers 1), then publishes one pose per localised
   // scan and waits for the acknowledgements before it exits.
@@ -314,7 +314,7 @@ TEST(FastDdsInterop, ReceivesEveryPoseOfLocalize) {
 TEST(FastDdsInterop, ClientFailsWithoutPublisherAndOnBadArguments) {
   test::TempDir tmp;
   // Nobody publishes on this domain: exit 2 after the timeout, nothing received.
-  Child idle({FASTDDS_INTEROP_CLIENT, "--domain", std::to_string(test::testDomainId(15)), "--timeout", "1"},
+  Child idle({FASTDDS_INTEROP_CLIENT, "--domain", std::to_string(test::testDomainId(24)), "--timeout", "1"},
              tmp.path() / "idle");
   EXPECT_EQ(idle.wait(20), 2) << idle.out() << idle.err();
   EXPECT_NE(idle.out().find("map=0 cloud=0 octomap=0 map_info=0 exit=2"), std::string::npos) << idle.out();
@@ -322,7 +322,7 @@ TEST(FastDdsInterop, ClientFailsWithoutPublisherAndOnBadArguments) {
   for (const std::vector<std::string>& bad :
        {std::vector<std::string>{FASTDDS_INTEROP_CLIENT, "--timeout", "1"},
         {FASTDDS_INTEROP_CLIENT, "--domain", "233"},
-        {FASTDDS_INTEROP_CLIENT, "--domain", std::to_string(test::testDomainId(15)), "--topics", "map,nosuch",
+        {FASTDDS_INTEROP_CLIENT, "--domain", std::to_string(test::testDomainId(24)), "--topics", "map,nosuch",
          "--timeout", "1"}}) {
     Child c(bad, tmp.path() / "bad");
     EXPECT_EQ(c.wait(20), 1) << bad.back() << c.err();
