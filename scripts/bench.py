@@ -22,6 +22,7 @@ import glob
 import hashlib
 import json
 import math
+import re
 import os
 import shutil
 import subprocess
@@ -106,11 +107,16 @@ def simulate(exe, seq, scans, traversal, weather, out, log):
 def localization_metrics(eval_dir):
     """From `radarslam localize --eval-dir`: errors.csv (map-relative errors) and summary.txt."""
     summary = {}
+    nees = {}
     with open(os.path.join(eval_dir, "summary.txt"), encoding="utf-8") as f:
         for line in f:
             parts = line.split()
             if len(parts) == 2:
                 summary[parts[0]] = parts[1]
+            # "consistency    vs the map: NEES mean 3.31 (3 if calibrated), 90.6 % within the chi2(3) 95 % bound; ..."
+            m = re.search(r"vs the map: NEES mean ([0-9.]+) .*?, ([0-9.]+) % within", line)
+            if m:
+                nees = {"nees_mean": float(m.group(1)), "nees_within_95": float(m.group(2)) / 100}
     trusted = good = bad = scans = 0
     with open(os.path.join(eval_dir, "errors.csv"), encoding="utf-8") as f:
         for line in f:
@@ -134,6 +140,7 @@ def localization_metrics(eval_dir):
         "trusted_over_2m_or_2deg": bad,
         "first_fix_scan": int(summary.get("first_fix_scan", "-1")),
         "scans_per_s": float(summary.get("scans_per_s", "nan")),
+        **nees,
     }
 
 

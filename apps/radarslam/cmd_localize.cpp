@@ -36,6 +36,7 @@
 #include "cli_common.h"
 #include "command.h"
 #include "dataset_config.h"
+#include "eval_localization.h"
 #include "localize_dds.h"
 #include "localize_map_dds.h"
 #include "localize_output.h"
@@ -293,6 +294,7 @@ int runLocalize(int argc, char** argv) {
   const auto truth = reader ? truthInMapFrame(map, *reader, dir) : std::nullopt;
   const bool gt = truth.has_value();
   std::vector<double> pos_err, head_err, map_pos_err, map_head_err, fits;
+  Trajectory local_truth;  // the truth as the map places it (mapRelativeTruth), per localised scan
   std::ostringstream err_csv;
   err_csv << "# stamp_s scan status position_error_m heading_error_deg fit_score sigma_x_m sigma_y_m "
              "sigma_phi_deg map_position_error_m map_heading_error_deg\n";
@@ -350,6 +352,8 @@ int runLocalize(int argc, char** argv) {
           // Relative to the nearest map keyframe: without the map's own error.
           const auto rel = mapRelativeError(map, *truth, r.pose, *t);
           if (rel) map_pos_err.push_back(rel->first), map_head_err.push_back(rel->second);
+          if (const auto local = mapRelativeTruth(map, *truth, r.pose, *t))
+            local_truth.push_back({r.stamp, *local});
           std::snprintf(line, sizeof line, "%s %zu %s %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f\n",
                         formatStampSeconds(r.stamp).c_str(), f.index, toString(r.status), e, h, r.fit_score,
                         std::sqrt(c(0, 0)), std::sqrt(c(1, 1)), std::sqrt(c(2, 2)) * 180 / M_PI,
@@ -416,6 +420,16 @@ int runLocalize(int argc, char** argv) {
                   median(map_head_err),
                   map_head_err.empty() ? NAN : *std::max_element(map_head_err.begin(), map_head_err.end()));
     s << buf;
+    if (side_file && !local_truth.empty()) {  // consistency against the truth as the map places it
+      const LocalizationScore score = scoreLocalization(side_path, local_truth);
+      std::snprintf(
+          buf, sizeof buf,
+          "  consistency    vs the map: NEES mean %.2f (3 if calibrated), %.1f %% within the chi2(3) 95 "
+          "%% bound; position part %.2f (2), heading part %.2f (1); %zu localised scans\n",
+          score.nees_mean, 100 * score.nees_within_95, score.nees_xy_mean, score.nees_yaw_mean,
+          score.with_truth);
+      s << buf;
+    }
     std::cout << s.str();
     if (eval_arg.isSet()) {
       const fs::path eval_dir = eval_arg.getValue();
@@ -428,6 +442,8 @@ int runLocalize(int argc, char** argv) {
       writeTextAtomically(eval_dir / "summary.txt", std::string(buf).append(s.str()));
       // The truth in the map frame: GT of `radarslam eval --localization FILE.csv E/truth_map.tum`.
       writeTumTrajectory(eval_dir / "truth_map.tum", truth->truth);
+      // ... and as the map places it (nearest keyframe), per localised scan: the consistency above.
+      if (!local_truth.empty()) writeTumTrajectory(eval_dir / "truth_local.tum", local_truth);
       std::cout << "  eval           " << (eval_dir / "errors.csv").string() << ", "
                 << (eval_dir / "summary.txt").string() << ", " << (eval_dir / "truth_map.tum").string()
                 << "\n";

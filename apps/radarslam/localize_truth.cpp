@@ -88,16 +88,23 @@ std::optional<MapFrameTruth> truthInMapFrame(const KeyframeMap& map, const Datas
   return std::nullopt;
 }
 
-std::optional<std::pair<double, double>> mapRelativeError(const KeyframeMap& map, const MapFrameTruth& truth,
-                                                          const TPose2D& est, const TPose2D& est_truth) {
+std::optional<TPose2D> mapRelativeTruth(const KeyframeMap& map, const MapFrameTruth& truth,
+                                        const TPose2D& est, const TPose2D& est_truth) {
   const long nearest =
       nearestKeyframe(map, est.x, est.y, [&](std::size_t k) { return truth.keyframe_truth[k].has_value(); });
   if (nearest < 0) return std::nullopt;
   const auto best = static_cast<std::size_t>(nearest);
-  const CPose2D rel_est = CPose2D(est) - CPose2D(map.keyframes[best].pose);
   const CPose2D rel_true = CPose2D(est_truth) - CPose2D(*truth.keyframe_truth[best]);
-  const double heading = std::abs(std::remainder(rel_est.phi() - rel_true.phi(), 2 * M_PI)) * 180 / M_PI;
-  return std::make_pair(std::hypot(rel_est.x() - rel_true.x(), rel_est.y() - rel_true.y()), heading);
+  return (CPose2D(map.keyframes[best].pose) + rel_true).asTPose();
+}
+
+std::optional<std::pair<double, double>> mapRelativeError(const KeyframeMap& map, const MapFrameTruth& truth,
+                                                          const TPose2D& est, const TPose2D& est_truth) {
+  // |est - keyframe ⊕ rel_true| = |rel_est - rel_true| in the keyframe's frame (a rotation apart).
+  const auto local = mapRelativeTruth(map, truth, est, est_truth);
+  if (!local) return std::nullopt;
+  const double heading = std::abs(std::remainder(est.phi - local->phi, 2 * M_PI)) * 180 / M_PI;
+  return std::make_pair(std::hypot(est.x - local->x, est.y - local->y), heading);
 }
 
 }  // namespace radarslam::cli

@@ -37,5 +37,12 @@ std::optional<MapFrameTruth> truthInMapFrame(const KeyframeMap& map, const Datas
 std::optional<std::pair<double, double>> mapRelativeError(const KeyframeMap& map, const MapFrameTruth& truth,
                                                           const mrpt::math::TPose2D& est,
                                                           const mrpt::math::TPose2D& est_truth);
+/// The true pose as the map places it: the nearest map keyframe (with truth) of `est` composed with
+/// the true pose relative to that keyframe's true pose. `est` minus this is mapRelativeError's
+/// error in the map frame; the consistency (NEES) of a localiser in a SLAM map is measured against
+/// it, since the map's own drift is not the localiser's error.
+std::optional<mrpt::math::TPose2D> mapRelativeTruth(const KeyframeMap& map, const MapFrameTruth& truth,
+                                                    const mrpt::math::TPose2D& est,
+                                                    const mrpt::math::TPose2D& est_truth);
 
 }  // namespace radarslam::cli

@@ -26,8 +26,19 @@ void loadParams(const YamlParams& yaml, MapTrackerParams& p) {
   loadParams(yaml.section("icp"), p.icp);
 }
 
+namespace {
+// The registration's model errors for this kind of map (IcpParams: raw sweeps or SLAM clouds).
+MapTrackerParams forMap(MapTrackerParams p, const KeyframeMap& map) {
+  if (map.meta.clouds_motion_compensated) {
+    p.icp.heading_sigma_floor_deg = p.icp.slam_map_heading_sigma_floor_deg;
+    p.icp.position_sigma_floor_m = p.icp.slam_map_position_sigma_floor_m;
+  }
+  return p;
+}
+}  // namespace
+
 MapTracker::MapTracker(const KeyframeMap& map, const MapTrackerParams& params)
-    : map_(map), params_(params), connectivity_(map) {}
+    : map_(map), params_(forMap(params, map)), connectivity_(map) {}
 MapTracker::~MapTracker() = default;
 
 void MapTracker::rebuild(const mrpt::math::TPose2D& predicted, long anchor) {

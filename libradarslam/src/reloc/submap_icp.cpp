@@ -36,6 +36,9 @@ void loadParams(const YamlParams& yaml, IcpParams& p) {
   yaml.get("min_sigma_m", p.min_sigma_m, Range::closed(0, 100));
   yaml.get("covariance_scale", p.covariance_scale, Range::above(0, 1000000.0));
   yaml.get("heading_sigma_floor_deg", p.heading_sigma_floor_deg, Range::closed(0, 90));
+  yaml.get("position_sigma_floor_m", p.position_sigma_floor_m, Range::closed(0, 100));
+  yaml.get("slam_map_heading_sigma_floor_deg", p.slam_map_heading_sigma_floor_deg, Range::closed(0, 90));
+  yaml.get("slam_map_position_sigma_floor_m", p.slam_map_position_sigma_floor_m, Range::closed(0, 100));
   if (p.max_correspondence_m < p.inlier_distance_m)
     yaml.fail("max_correspondence_m", "must be >= inlier_distance_m");
   p.max_scan_points = static_cast<std::size_t>(max_points);
@@ -260,6 +263,9 @@ IcpResult LocalSubmap::registerScan(std::span<const RadarPoint> scan, const mrpt
     res.covariance = 0.5 * (res.covariance + res.covariance.transpose()).eval();
     const double floor_rad = params.heading_sigma_floor_deg * M_PI / 180;
     res.covariance(2, 2) += floor_rad * floor_rad;
+    const double floor_m2 = params.position_sigma_floor_m * params.position_sigma_floor_m;
+    res.covariance(0, 0) += floor_m2;
+    res.covariance(1, 1) += floor_m2;
   } else {
     res.covariance = Eigen::Matrix3d::Identity() * 1e6;
   }

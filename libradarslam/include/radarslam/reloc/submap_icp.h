@@ -11,7 +11,8 @@
 // Covariance = sigma^2 H^-1 (pseudo-inverse with eigenvalues clamped at 1e-6; H = Gauss-Newton Hessian J^T W
 // J of the final inliers, sigma^2 = their weighted residual variance, at least min_sigma_m^2) times
 // covariance_scale (> 1 because neighbouring radar points are not independent measurements), plus
-// a heading model-error variance heading_sigma_floor_deg^2.
+// a heading model-error variance heading_sigma_floor_deg^2 and a position one position_sigma_floor_m^2
+// (the slam_map_ pair for maps of motion-compensated clouds, chosen by the map tracker).
 #include <mrpt/math/TPose2D.h>
 #include <Eigen/Core>
 
@@ -59,6 +60,13 @@ struct IcpParams {
   /// systematic (lag-1 autocorrelation 0.85), not the independent point noise sigma^2 H^-1 models;
   /// chosen on train sequences (docs/localization.md, "Calibrated covariance"); valid [0, 90]
   double heading_sigma_floor_deg = 0.25;
+  double position_sigma_floor_m = 0.0;  ///< position model error (1 sigma, per axis); valid [0, 100]
+  /// The model errors for a map of motion-compensated keyframe clouds (`radarslam map`; the two above
+  /// are for maps of raw sweeps, map-synth): the SLAM keyframe poses carry the map's own local error,
+  /// so the position gets a floor, and the heading error is smaller. Chosen on the train sequence
+  /// grid-s1-clear as sqrt(mean(e^2 - sigma_icp^2)) (docs/localization.md); valid [0, 90] / [0, 100]
+  double slam_map_heading_sigma_floor_deg = 0.14;  ///< heading model error, maps of compensated clouds
+  double slam_map_position_sigma_floor_m = 0.035;  ///< position model error, maps of compensated clouds
 };
 
 void loadParams(const YamlParams& yaml, SubmapParams& params);
