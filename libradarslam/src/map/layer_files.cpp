@@ -209,14 +209,24 @@ std::vector<std::int8_t> readGridOverviewLayer(const fs::path& map_dir, const Ma
                       layers.tiling.overview_height);
 }
 
-std::vector<GridTileEntry> readGridTileIndexLayer(const fs::path& map_dir, const MapLayersManifest& layers) {
-  const LayerFileEntry& e = layers.file("grid_tiles");
+namespace {
+// A tile index file (checked against the manifest): its text after the first line, which must be
+// `first_line`; `file` receives its path for error messages.
+std::string readTileIndexText(const fs::path& map_dir, const LayerFileEntry& e, const char* first_line,
+                              std::string& file) {
   std::vector<std::uint8_t> body;
-  const std::string header = readLayerFile(map_dir, e, kGridTilesHeader, body);
-  const std::string file = (map_dir / e.name).string();
-  if (header != std::string(kGridTilesHeader) + "\n")
-    throw InputError(file, std::string("expected the first line '") + kGridTilesHeader + "'");
-  return parseGridTileIndex(std::string(body.begin(), body.end()), layers.tiling, file);
+  const std::string header = readLayerFile(map_dir, e, first_line, body);
+  file = (map_dir / e.name).string();
+  if (header != std::string(first_line) + "\n")
+    throw InputError(file, std::string("expected the first line '") + first_line + "'");
+  return std::string(body.begin(), body.end());
+}
+}  // namespace
+
+std::vector<GridTileEntry> readGridTileIndexLayer(const fs::path& map_dir, const MapLayersManifest& layers) {
+  std::string file;
+  const std::string text = readTileIndexText(map_dir, layers.file("grid_tiles"), kGridTilesHeader, file);
+  return parseGridTileIndex(text, layers.tiling, file);
 }
 
 void forEachGridTileLayer(
@@ -302,13 +312,9 @@ std::vector<std::uint8_t> readCloudLayer(const fs::path& map_dir, const MapLayer
 
 std::vector<CloudTileEntry> readCloudTileIndexLayer(const fs::path& map_dir,
                                                     const MapLayersManifest& layers) {
-  const LayerFileEntry& e = layers.file("cloud_tiles");
-  std::vector<std::uint8_t> body;
-  const std::string header = readLayerFile(map_dir, e, kCloudTilesHeader, body);
-  const std::string file = (map_dir / e.name).string();
-  if (header != std::string(kCloudTilesHeader) + "\n")
-    throw InputError(file, std::string("expected the first line '") + kCloudTilesHeader + "'");
-  return parseCloudTileIndex(std::string(body.begin(), body.end()), layers.tiling, layers.cloud_points, file);
+  std::string file;
+  const std::string text = readTileIndexText(map_dir, layers.file("cloud_tiles"), kCloudTilesHeader, file);
+  return parseCloudTileIndex(text, layers.tiling, layers.cloud_points, file);
 }
 
 void forEachCloudTileLayer(
