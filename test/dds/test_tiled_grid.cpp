@@ -163,8 +163,8 @@ TEST(TiledGrid, ServerSendsOverviewAndTilesClientRebuildsTheGridExactly) {
   EXPECT_NE(test::readText(got / "map_info.yaml").find(layers.grid_cells_sha256), std::string::npos);
   // The cloud came as tiles and was appended in order: the same data as the map's cloud.pcd.
   EXPECT_NE(server.err().find(" tiles"), std::string::npos);
-  auto pcdBody = [](const fs::path& p) {
-    const std::string t = test::readText(p);
+  auto pcdBody = [](const fs::path& file) {
+    const std::string t = test::readText(file);
     return t.substr(t.find("DATA binary\n"));
   };
   EXPECT_TRUE(pcdBody(got / "cloud.pcd") == pcdBody(map_dir / "layers" / "cloud.pcd"));
