@@ -1,6 +1,7 @@
 // SHA-256 against the FIPS 180-4 / NIST example vectors, incl. multi-block and chunked updates.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <string>
 
 #include "radarslam/map/sha256.h"
@@ -33,4 +34,23 @@ TEST(Sha256, ChunkedUpdatesEqualOneShot) {
   }
   // Lengths around the padding boundary (55/56/64 bytes) differ from each other.
   EXPECT_NE(sha256Hex(std::string(55, 'x')), sha256Hex(std::string(56, 'x')));
+}
+
+TEST(Sha256, HexRoundTripAndStrictForm) {
+  Sha256 h;
+  h.update("abc");
+  const auto bytes = h.digest();
+  const std::string hex = radarslam::toHex(bytes);
+  EXPECT_EQ(hex, "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  EXPECT_TRUE(radarslam::isSha256Hex(hex));
+  const auto back = radarslam::sha256FromHex(hex);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(*back, bytes);
+  // Only 64 lower-case hex digits are a SHA-256 of the map format.
+  for (const std::string& bad : {hex.substr(1), hex + "0", std::string("BA") + hex.substr(2),
+                                 std::string("g") + hex.substr(1), std::string(" ") + hex.substr(1)}) {
+    EXPECT_FALSE(radarslam::isSha256Hex(bad)) << bad;
+    EXPECT_FALSE(radarslam::sha256FromHex(bad).has_value()) << bad;
+  }
+  EXPECT_EQ(radarslam::toHex(std::array<unsigned char, 3>{0x00, 0x0f, 0xf0}), "000ff0");
 }

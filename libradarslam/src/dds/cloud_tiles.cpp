@@ -12,8 +12,6 @@ namespace radarslam::dds {
 
 namespace fs = std::filesystem;
 
-class TiledCloudWriter::Hasher : public Sha256 {};
-
 namespace {
 
 void writeAll(int fd, const void* data, std::size_t n, const fs::path& file) {
@@ -61,7 +59,7 @@ TiledCloudWriter::TiledCloudWriter(const fs::path& dir, const MapInfoMsg& info)
       expected_tiles_(info.cloud_tile_count),
       expected_points_(info.cloud_points),
       expected_sha_(info.cloud_sha256),
-      sha_(std::make_unique<Hasher>()) {
+      sha_(std::make_unique<Sha256>()) {
   if (expected_tiles_ == 0 || expected_sha_.size() != 64)
     throw InputError("MapInfo", "not a consistent description of a tiled cloud");
   tmp_ = dir_ / (".cloud.pcd.tiles-" + std::to_string(::getpid()));

@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 
 #include "radarslam/core/atomic_file.h"
 #include "radarslam/core/errors.h"
@@ -21,16 +22,6 @@ namespace radarslam::dds {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string hexOf(const std::uint8_t* bytes) {
-  static const char* digits = "0123456789abcdef";
-  std::string out(64, '0');
-  for (int i = 0; i < 32; ++i) {
-    out[2 * i] = digits[bytes[i] >> 4];
-    out[2 * i + 1] = digits[bytes[i] & 15];
-  }
-  return out;
-}
 
 std::string cellsSha(const std::vector<std::int8_t>& cells) {
   return sha256Hex({reinterpret_cast<const unsigned char*>(cells.data()), cells.size()});
@@ -81,9 +72,9 @@ void describeTiles(MapInfoMsg& info, const GridTiling& t, const std::vector<Grid
   info.overview_sha256 = t.tiled() ? overview_sha256 : "";
   for (const auto& e : index) {
     info.tile_indices.push_back(t.tileKey(e.tx, e.ty));
-    for (int i = 0; i < 32; ++i)
-      info.tile_sha256.push_back(
-          static_cast<std::uint8_t>(std::stoi(e.sha256.substr(2 * i, 2), nullptr, 16)));
+    const auto bytes = sha256FromHex(e.sha256);
+    if (!bytes) throw std::invalid_argument("describeTiles: tile index entry without a SHA-256");
+    info.tile_sha256.insert(info.tile_sha256.end(), bytes->begin(), bytes->end());
   }
 }
 
@@ -170,7 +161,7 @@ bool TiledGridWriter::add(const MapTileMsg& tile) {
     throw InputError("MapTile",
                      what + ": expected " + std::to_string(r.cols) + "x" + std::to_string(r.rows) + " cells");
   const std::string sha = cellsSha(tile.grid.data);
-  if (sha != hexOf(info_.tile_sha256.data() + 32 * i))
+  if (sha != toHex({info_.tile_sha256.data() + 32 * i, 32}))
     throw InputError("MapTile", what + ": SHA-256 of its cells differs from MapInfo's");
   if (resolution_ == 0) resolution_ = tile.grid.resolution;
   std::vector<char> row(r.cols);

@@ -21,13 +21,6 @@ constexpr std::uint32_t kMaxFiles = 64;         // a map has 5 (+4 layers)
 constexpr std::uint32_t kMaxChunks = 1u << 20;  // 4 TiB at 4 MiB: far beyond any map
 constexpr std::size_t kMaxPathBytes = 200;
 
-bool isHex64(const std::string& s) {
-  if (s.size() != 64) return false;
-  for (char c : s)
-    if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'))) return false;
-  return true;
-}
-
 std::string fileSha256(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   Sha256 sha;
@@ -94,7 +87,7 @@ void MapFileAssembler::reset(const MapFileChunkMsg& first) {
   if (pub_.total_chunks < pub_.file_count || pub_.total_chunks > kMaxChunks)
     fail("revision " + std::to_string(pub_.revision) + ": chunk count " + std::to_string(pub_.total_chunks) +
          " does not fit " + std::to_string(pub_.file_count) + " files");
-  if (!isHex64(pub_.manifest_sha256))
+  if (!isSha256Hex(pub_.manifest_sha256))
     fail("revision " + std::to_string(pub_.revision) + ": manifest SHA-256 is not 64 hex digits");
 }
 
@@ -126,7 +119,7 @@ bool MapFileAssembler::add(const MapFileChunkMsg& c) {
          std::to_string(pub_.file_count));
   if ((path == "manifest.yaml") != (c.file_index == 0))
     fail(path + ": file 0 must be manifest.yaml and only file 0");
-  if (!isHex64(c.file_sha256)) fail(path + ": file SHA-256 is not 64 hex digits");
+  if (!isSha256Hex(c.file_sha256)) fail(path + ": file SHA-256 is not 64 hex digits");
   if (c.chunk_count < 1 || c.chunk_index >= c.chunk_count)
     fail(path + ": chunk " + std::to_string(c.chunk_index) + " of " + std::to_string(c.chunk_count));
   if (c.file_size > static_cast<std::uint64_t>(c.chunk_count) * kMaxMapFileChunkBytes)

@@ -81,8 +81,7 @@ std::vector<CloudTileEntry> parseCloudTileIndex(const std::string& text, const G
     CloudTileEntry e;
     std::string rest;
     const bool ok = (ls >> tx >> ty >> first >> count >> e.sha256) && !(ls >> rest) && tx >= 0 && ty >= 0 &&
-                    tx < t.tiles_x && ty < t.tiles_y && count > 0 && e.sha256.size() == 64 &&
-                    e.sha256.find_first_not_of("0123456789abcdef") == std::string::npos;
+                    tx < t.tiles_x && ty < t.tiles_y && count > 0 && isSha256Hex(e.sha256);
     if (!ok)
       throw InputError(origin,
                        "line " + std::to_string(n) + ": expected 'tx ty first count sha256' of a tile");

@@ -13,10 +13,6 @@ namespace {
 std::uint32_t ceilDiv(std::uint64_t a, std::uint64_t b) {
   return static_cast<std::uint32_t>((a + b - 1) / b);
 }
-
-bool isHex64(const std::string& s) {
-  return s.size() == 64 && s.find_first_not_of("0123456789abcdef") == std::string::npos;
-}
 }  // namespace
 
 GridTiling gridTiling(std::uint32_t width, std::uint32_t height, const GridTilingParams& p) {
@@ -108,7 +104,7 @@ std::vector<GridTileEntry> parseGridTileIndex(const std::string& text, const Gri
     GridTileEntry e;
     std::string rest;
     if (!(ls >> tx >> ty >> e.sha256) || (ls >> rest) || tx < 0 || ty < 0 || tx >= t.tiles_x ||
-        ty >= t.tiles_y || !isHex64(e.sha256))
+        ty >= t.tiles_y || !isSha256Hex(e.sha256))
       throw InputError(origin, "line " + std::to_string(n) + ": expected 'tx ty sha256' of a tile in 0.." +
                                    std::to_string(t.tiles_x) + " x 0.." + std::to_string(t.tiles_y));
     e.tx = static_cast<std::uint32_t>(tx);

@@ -210,6 +210,25 @@ std::vector<std::int8_t> readGridOverviewLayer(const fs::path& map_dir, const Ma
 }
 
 namespace {
+// Opens a layer file read tile by tile (never whole): it must be a regular file of exactly
+// header + body_bytes bytes (= the manifest's size) starting with `header`. Returns the stream
+// positioned after the header; `what` describes the expected content in errors.
+std::ifstream openLayerBody(const fs::path& path, const LayerFileEntry& e, const std::string& header,
+                            std::uint64_t body_bytes, const std::string& what) {
+  const std::string file = path.string();
+  requireRegularFile(path, "missing layer file (listed in manifest.yaml)");
+  const std::uint64_t size = header.size() + body_bytes;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || static_cast<std::uint64_t>(st.st_size) != size || size != e.bytes)
+    throw InputError(file, "size mismatch: " + std::to_string(st.st_size) + " bytes, manifest says " +
+                               std::to_string(e.bytes) + " (" + what + ")");
+  std::ifstream in(path, std::ios::binary);
+  std::string got(header.size(), '\0');
+  if (!in || !in.read(got.data(), static_cast<std::streamsize>(got.size())) || got != header)
+    throw InputError(file, "header is not the one radarslam writes for " + what);
+  return in;
+}
+
 // A tile index file (checked against the manifest): its text after the first line, which must be
 // `first_line`; `file` receives its path for error messages.
 std::string readTileIndexText(const fs::path& map_dir, const LayerFileEntry& e, const char* first_line,
@@ -236,19 +255,9 @@ void forEachGridTileLayer(
   const fs::path path = map_dir / e.name;
   const std::string file = path.string();
   const GridTiling& t = layers.tiling;
-  requireRegularFile(path, "missing layer file (listed in manifest.yaml)");
   const std::string header = "P5\n" + std::to_string(t.width) + " " + std::to_string(t.height) + "\n255\n";
-  const std::uint64_t size = header.size() + std::uint64_t{t.width} * t.height;
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0 || static_cast<std::uint64_t>(st.st_size) != size || size != e.bytes)
-    throw InputError(file, "size mismatch: " + std::to_string(st.st_size) + " bytes, manifest says " +
-                               std::to_string(e.bytes) + " (a " + std::to_string(t.width) + "x" +
-                               std::to_string(t.height) + " P5 image)");
-  std::ifstream in(path, std::ios::binary);
-  std::string got(header.size(), '\0');
-  if (!in || !in.read(got.data(), static_cast<std::streamsize>(got.size())) || got != header)
-    throw InputError(file, "not the " + std::to_string(t.width) + "x" + std::to_string(t.height) +
-                               " 8-bit P5 image the manifest describes");
+  const std::string what = "a " + std::to_string(t.width) + "x" + std::to_string(t.height) + " P5 image";
+  std::ifstream in = openLayerBody(path, e, header, std::uint64_t{t.width} * t.height, what);
   static const PixelTable table;
   std::vector<std::int8_t> band, tile;
   std::uint32_t band_ty = UINT32_MAX;
@@ -323,19 +332,10 @@ void forEachCloudTileLayer(
   const LayerFileEntry& e = layers.file("cloud");
   const fs::path path = map_dir / e.name;
   const std::string file = path.string();
-  requireRegularFile(path, "missing layer file (listed in manifest.yaml)");
   const std::string header = cloudPcdHeader(layers.cloud_points);
-  const std::uint64_t size = header.size() + layers.cloud_points * 16;
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0 || static_cast<std::uint64_t>(st.st_size) != size || size != e.bytes)
-    throw InputError(file, "size mismatch: " + std::to_string(st.st_size) + " bytes, manifest says " +
-                               std::to_string(e.bytes) + " (" + std::to_string(layers.cloud_points) +
-                               " points)");
-  std::ifstream in(path, std::ios::binary);
-  std::string got(header.size(), '\0');
-  if (!in || !in.read(got.data(), static_cast<std::streamsize>(got.size())) || got != header)
-    throw InputError(file, "PCD header: not the header radarslam writes for the manifest's " +
-                               std::to_string(layers.cloud_points) + " points");
+  std::ifstream in =
+      openLayerBody(path, e, header, layers.cloud_points * 16,
+                    "a PCD of the manifest's " + std::to_string(layers.cloud_points) + " points");
   std::vector<std::uint8_t> data;
   for (const CloudTileEntry& t : index) {
     data.resize(t.count * 16);

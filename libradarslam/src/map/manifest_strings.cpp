@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "radarslam/map/sha256.h"
+
 namespace radarslam::mapcodec {
 
 namespace {
@@ -82,14 +84,7 @@ bool needsHexTwin(const std::string& s) {
 }
 
 std::string hexEncode(const std::string& bytes) {
-  static const char* kDigits = "0123456789abcdef";
-  std::string out;
-  out.reserve(bytes.size() * 2);
-  for (unsigned char c : bytes) {
-    out.push_back(kDigits[c >> 4]);
-    out.push_back(kDigits[c & 15]);
-  }
-  return out;
+  return toHex({reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()});
 }
 
 std::optional<std::string> hexDecode(const std::string& hex) {

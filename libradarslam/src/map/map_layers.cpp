@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 
 #include "manifest_strings.h"
@@ -35,9 +36,11 @@ std::string fmtDouble(double v) {
   return buf;
 }
 
-void writeSynced(const fs::path& path, std::string_view bytes) {
+// Writes the parts one after another into `path` and flushes it to disk.
+void writeSynced(const fs::path& path, std::initializer_list<std::string_view> parts) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  for (const std::string_view bytes : parts)
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   out.close();
   if (!out) throw InputError(path.string(), "write failed (disk full or no permission?)");
   fsyncFile(path);
@@ -109,11 +112,11 @@ MapLayersManifest writeMapLayers(const KeyframeMap& map, const fs::path& map_dir
     const std::vector<std::int8_t> cells = occupancyCells(*raster);
     m.grid_cells_sha256 = sha256Hex({reinterpret_cast<const unsigned char*>(cells.data()), cells.size()});
     const std::string pgm = gridPgm(cells, m.grid_width, m.grid_height);
-    writeSynced(dir / kGridLayerFile, pgm);
+    writeSynced(dir / kGridLayerFile, {pgm});
     m.files.push_back(entry("grid", prefix + kGridLayerFile, pgm));
     const std::string yaml = gridRosYaml(kGridLayerFile, static_cast<float>(params.grid.resolution_m),
                                          m.grid_origin_x, m.grid_origin_y);
-    writeSynced(dir / kGridYamlLayerFile, yaml);
+    writeSynced(dir / kGridYamlLayerFile, {yaml});
     m.files.push_back(entry("grid_yaml", prefix + kGridYamlLayerFile, yaml));
     // A large grid: its overview and tile index too (map/grid_tiles.h).
     m.tiling = gridTiling(m.grid_width, m.grid_height, params.tiling);
@@ -122,11 +125,11 @@ MapLayersManifest writeMapLayers(const KeyframeMap& map, const fs::path& map_dir
       m.grid_overview_cells_sha256 =
           sha256Hex({reinterpret_cast<const unsigned char*>(overview.data()), overview.size()});
       const std::string opgm = gridPgm(overview, m.tiling.overview_width, m.tiling.overview_height);
-      writeSynced(dir / kGridOverviewLayerFile, opgm);
+      writeSynced(dir / kGridOverviewLayerFile, {opgm});
       m.files.push_back(entry("grid_overview", prefix + kGridOverviewLayerFile, opgm));
       const std::string index =
           std::string(kGridTilesHeader) + "\n" + gridTileIndexText(gridTileIndex(cells, m.tiling));
-      writeSynced(dir / kGridTilesLayerFile, index);
+      writeSynced(dir / kGridTilesLayerFile, {index});
       m.files.push_back(entry("grid_tiles", prefix + kGridTilesLayerFile, index));
     }
   }
@@ -142,15 +145,7 @@ MapLayersManifest writeMapLayers(const KeyframeMap& map, const fs::path& map_dir
     if (m.tiling.tiled())
       tiles = sortCloudByTile(data, m.tiling, params.grid.resolution_m, m.grid_origin_x, m.grid_origin_y);
     const std::string header = cloudPcdHeader(m.cloud_points);
-    {
-      std::ofstream out(dir / kCloudLayerFile, std::ios::binary | std::ios::trunc);
-      out.write(header.data(), static_cast<std::streamsize>(header.size()));
-      out.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size()));
-      out.close();
-      if (!out)
-        throw InputError((dir / kCloudLayerFile).string(), "write failed (disk full or no permission?)");
-      fsyncFile(dir / kCloudLayerFile);
-    }
+    writeSynced(dir / kCloudLayerFile, {header, {reinterpret_cast<const char*>(data.data()), data.size()}});
     Sha256 sha;
     sha.update(header);
     sha.update({data.data(), data.size()});
@@ -158,7 +153,7 @@ MapLayersManifest writeMapLayers(const KeyframeMap& map, const fs::path& map_dir
     if (m.tiling.tiled()) {
       m.cloud_data_sha256 = sha256Hex({data.data(), data.size()});
       const std::string index = std::string(kCloudTilesHeader) + "\n" + cloudTileIndexText(tiles);
-      writeSynced(dir / kCloudTilesLayerFile, index);
+      writeSynced(dir / kCloudTilesLayerFile, {index});
       m.files.push_back(entry("cloud_tiles", prefix + kCloudTilesLayerFile, index));
     }
   }
@@ -182,7 +177,7 @@ MapLayersManifest writeMapLayers(const KeyframeMap& map, const fs::path& map_dir
     ss << in.rdbuf();
     bt = ss.str();
   }
-  writeSynced(dir / kOctomapLayerFile, bt);
+  writeSynced(dir / kOctomapLayerFile, {bt});
   m.files.push_back(entry("octomap", prefix + kOctomapLayerFile, bt));
   return m;
 }
@@ -238,16 +233,13 @@ std::optional<MapLayersManifest> parseLayersManifest(const YamlParams& manifest,
   y.get("grid_origin_y", l.grid_origin_y);
   if (!std::isfinite(l.grid_origin_x) || !std::isfinite(l.grid_origin_y))
     throw InputError(origin, "layers: grid origin is not finite");
-  auto isHex64 = [](const std::string& s) {
-    return s.size() == 64 && s.find_first_not_of("0123456789abcdef") == std::string::npos;
-  };
   y.get("grid_cells_sha256", l.grid_cells_sha256);
-  if (!l.grid_cells_sha256.empty() && !isHex64(l.grid_cells_sha256))
+  if (!l.grid_cells_sha256.empty() && !isSha256Hex(l.grid_cells_sha256))
     throw InputError(origin, "layers.grid_cells_sha256: expected 64 lower-case hex digits");
   l.tiling = gridTiling(w, h, l.params.tiling);
   if (l.tiling.tiled()) {
     y.get("grid_overview_cells_sha256", l.grid_overview_cells_sha256);
-    if (!isHex64(l.grid_overview_cells_sha256))
+    if (!isSha256Hex(l.grid_overview_cells_sha256))
       throw InputError(origin,
                        "layers.grid_overview_cells_sha256: expected 64 lower-case hex digits (a tiled grid)");
   }
@@ -258,7 +250,7 @@ std::optional<MapLayersManifest> parseLayersManifest(const YamlParams& manifest,
   l.cloud_points = *n;
   if (l.tiling.tiled()) {
     y.get("cloud_data_sha256", l.cloud_data_sha256);
-    if (!isHex64(l.cloud_data_sha256))
+    if (!isSha256Hex(l.cloud_data_sha256))
       throw InputError(origin, "layers.cloud_data_sha256: expected 64 lower-case hex digits (a tiled map)");
   }
   const YamlParams files = y.section("files");

@@ -30,20 +30,37 @@ std::array<unsigned char, 32> Sha256::digest() {
 }
 
 std::string Sha256::hexDigest() {
-  static const char* digits = "0123456789abcdef";
   const auto d = digest();
-  std::string out(64, '0');
-  for (std::size_t i = 0; i < d.size(); ++i) {
-    out[2 * i] = digits[d[i] >> 4];
-    out[2 * i + 1] = digits[d[i] & 15];
-  }
-  return out;
+  return toHex(d);
 }
 
 std::string sha256Hex(std::span<const unsigned char> data) {
   Sha256 h;
   h.update(data);
   return h.hexDigest();
+}
+
+std::string toHex(std::span<const unsigned char> bytes) {
+  static const char* digits = "0123456789abcdef";
+  std::string out(2 * bytes.size(), '0');
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    out[2 * i] = digits[bytes[i] >> 4];
+    out[2 * i + 1] = digits[bytes[i] & 15];
+  }
+  return out;
+}
+
+bool isSha256Hex(std::string_view text) {
+  return text.size() == 64 && text.find_first_not_of("0123456789abcdef") == std::string_view::npos;
+}
+
+std::optional<std::array<unsigned char, 32>> sha256FromHex(std::string_view text) {
+  if (!isSha256Hex(text)) return std::nullopt;
+  const auto digit = [](char c) { return c <= '9' ? c - '0' : c - 'a' + 10; };
+  std::array<unsigned char, 32> out{};
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = static_cast<unsigned char>(digit(text[2 * i]) * 16 + digit(text[2 * i + 1]));
+  return out;
 }
 
 }  // namespace radarslam

@@ -10,6 +10,10 @@
 #include "radarslam/dds/messages.h"
 #include "radarslam/map/cloud_tiles.h"
 
+namespace radarslam {
+class Sha256;
+}
+
 namespace radarslam::dds {
 
 /// The points of one tile (16-byte records x y z intensity) as a PointCloud2 of publication `info`.
@@ -45,8 +49,7 @@ class TiledCloudWriter {
   std::uint32_t expected_tiles_ = 0, tiles_ = 0;
   std::uint64_t expected_points_ = 0, points_ = 0;
   std::string expected_sha_;
-  class Hasher;
-  std::unique_ptr<Hasher> sha_;
+  std::unique_ptr<Sha256> sha_;
   bool finished_ = false;
 };
 

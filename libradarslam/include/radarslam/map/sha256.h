@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -33,6 +34,13 @@ class Sha256 {
 };
 
 std::string sha256Hex(std::span<const unsigned char> data);
+
+/// Bytes as lower-case hex, two digits per byte.
+std::string toHex(std::span<const unsigned char> bytes);
+/// True for exactly 64 lower-case hex digits: the form of every SHA-256 in a map and its layers.
+bool isSha256Hex(std::string_view text);
+/// The 32 bytes of a SHA-256 written as isSha256Hex(); nullopt for anything else.
+std::optional<std::array<unsigned char, 32>> sha256FromHex(std::string_view text);
 inline std::string sha256Hex(std::string_view text) {
   return sha256Hex({reinterpret_cast<const unsigned char*>(text.data()), text.size()});
 }
