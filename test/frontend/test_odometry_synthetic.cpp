@@ -175,5 +175,34 @@ TEST(OdometrySynthetic, VehicleFixedStructureDoesNotStopTheEstimate) {
   }
 }
 
+TEST(OdometrySynthetic, AnEstimateNoVehicleCouldDriveIsNotTakenAsMotion) {
+  // Scan 12 is rendered 1.5 m further along than the 15 m/s drive puts it (as if a wall's keypoints
+  // had matched one step along it): a velocity change of 6 m/s within one 0.25 s scan, 2.4 g.
+  // The paper's fixed 4 m radius finds the matches; the acceleration bound (1 g) must reject
+  // the estimate: the scan is lost and predicted with constant velocity, and the drive goes on.
+  struct JumpAt12 : test::ConstantTwistMotion {  // renderScan calls this poseAt (a template)
+    void poseAt(double t, double& x, double& y, double& th) const {
+      ConstantTwistMotion::poseAt(t, x, y, th);
+      if (t >= 12 * 0.25 && t < 13 * 0.25) x += 1.5;
+    }
+  };
+  JumpAt12 motion;
+  motion.vx = 15.0;
+  motion.wz = 0.0;
+  static const auto world = test::makeWorld(3, -120, 140, -120, 120, 2500);
+  test::SynthScanParams sp;
+  sp.bins = 1600;
+  OdometryParams fixed;
+  fixed.matching.adaptive_radius = false;
+  RadarOdometry odo(fixed);
+  std::vector<OdometryStep> steps;
+  for (int k = 0; k < 16; ++k) steps.push_back(odo.process(*test::renderScan(world, motion, k, sp)));
+  EXPECT_TRUE(steps[12].implausible);
+  EXPECT_EQ(steps[12].status, TrackingStatus::Lost);
+  EXPECT_NEAR(steps[12].motion.x, 3.75, 0.1) << "the constant-velocity prediction";
+  for (int k = 1; k < 12; ++k) EXPECT_FALSE(steps[k].implausible) << "scan " << k;
+  EXPECT_NE(steps[15].status, TrackingStatus::Lost);
+}
+
 }  // namespace
 }  // namespace radarslam

@@ -241,6 +241,19 @@ struct RadarOdometry::Impl {
     const SearchRadius radius =
         wide ? SearchRadius::fixed(params.matching.init_radius_m) : bound.radius(lost_count);
 
+    // A road vehicle cannot change its velocity by more than a_max dt in one scan, so its
+    // translation cannot leave the constant-velocity prediction by more than a_max dt^2 (per scan
+    // since the last estimate) plus the estimation noise `noise_m`. An estimate beyond that is not
+    // the motion (keypoints of a featureless wall matched one step along it, vehicle-fixed clutter
+    // matched at zero motion).
+    const double accel_reach = params.tracking.max_acceleration_mps2 * dt * dt * (1 + lost_count);
+    const double keypoint_sigma_m = params.matching.keypoint_sigma_px * params.cartesian.m_per_px;
+    double estimate_gate_m = accel_reach;  // + the estimate's noise, once it is known
+    auto physicallyPossible = [&](const mrpt::math::TPose2D& estimate, double noise_m) {
+      const mrpt::math::TPose2D deviation = estimate - prior;
+      return std::hypot(deviation.x, deviation.y) <= accel_reach + noise_m;
+    };
+
     BodyVelocity v = velocity_known ? velocity : BodyVelocity{};
     BodyVelocity cur_compensation = v;
     f.compensate(v, mc);
@@ -267,13 +280,7 @@ struct RadarOdometry::Impl {
       Correspondences wide_inliers = selectInliers(wide_matches, retry, wide_pose);
       step.times.clique += retry.times.clique;
       step.times.svd += retry.times.svd;
-      // A road vehicle cannot change its velocity by more than a_max dt in one scan: a wide match
-      // whose translation leaves that bound (vehicle-fixed structure matched at zero motion,
-      // e.g. along a featureless wall) is not the motion.
-      const mrpt::math::TPose2D deviation = wide_pose - prior;
-      const double reach =
-          params.tracking.max_acceleration_mps2 * dt * dt * (1 + lost_count) + radius.fixed_m;
-      if (wide_inliers.size() > inliers.size() && std::hypot(deviation.x, deviation.y) <= reach) {
+      if (wide_inliers.size() > inliers.size() && physicallyPossible(wide_pose, radius.fixed_m)) {
         matches = std::move(wide_matches);
         inliers = std::move(wide_inliers);
         svd_pose = wide_pose;
@@ -363,6 +370,15 @@ struct RadarOdometry::Impl {
       step.inliers = static_cast<int>(obs.size());
       const double speed = std::hypot(v.vx, v.vy);
       if (!(dt > 0) || speed > params.tracking.max_speed_mps) ok = false;
+      // The estimate's own noise: k sigma of the difference of two poses each averaged over the
+      // observations (keypoint noise / sqrt(n)), not the search radius (which bounds one keypoint).
+      const double estimate_noise_m = params.matching.radius_sigmas * std::sqrt(2.0) * keypoint_sigma_m /
+                                      std::sqrt(std::max(1.0, static_cast<double>(obs.size())));
+      estimate_gate_m = accel_reach + estimate_noise_m;
+      if (ok && velocity_known && !gap && !physicallyPossible(T, estimate_noise_m)) {
+        ok = false;
+        step.implausible = true;
+      }
     }
     cur_compensation = currentVelocity(v);
     step.times.refine = msSince(t0);
@@ -410,8 +426,14 @@ struct RadarOdometry::Impl {
         step.new_keyframe = true;
         step.keyframe_points = keyframe.features.xy;
       }
-      logger().logFmt(mrpt::system::LVL_WARN, "odometry: tracking lost at %.3f s (%d matches, %d inliers)",
-                      toSeconds(step.stamp), step.matches, step.inliers);
+      if (step.implausible)
+        logger().logFmt(mrpt::system::LVL_WARN,
+                        "odometry: tracking lost at %.3f s (the estimate leaves the constant-velocity "
+                        "prediction by more than %.2f m: no road vehicle accelerates that hard)",
+                        toSeconds(step.stamp), estimate_gate_m);
+      else
+        logger().logFmt(mrpt::system::LVL_WARN, "odometry: tracking lost at %.3f s (%d matches, %d inliers)",
+                        toSeconds(step.stamp), step.matches, step.inliers);
     }
     step.motion = step.pose - last_pose;
     step.velocity = velocity;

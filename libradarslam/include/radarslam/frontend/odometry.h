@@ -52,6 +52,9 @@ struct OdometryStep {
   int keypoints = 0, matches = 0, inliers = 0;
   bool clique_exact = true;
   bool widened = false;  ///< the adaptive radius found too few inliers; matched again with the wide one
+  /// The estimate left the constant-velocity prediction by more than a road vehicle can
+  /// (TrackingParams::max_acceleration_mps2): treated as a tracking loss (status Lost).
+  bool implausible = false;
   bool new_keyframe = false;
   /// When new_keyframe: the new keyframe's keypoints in its sensor frame at the reference time
   /// (motion compensated) - the observations local mapping turns into map points - and, when it

@@ -30,9 +30,10 @@ struct TrackingParams {
   double min_range_m =
       3.0;  ///< keypoints closer than this are ignored (sensor/vehicle clutter); valid [0, 1000]
   double max_speed_mps = 40.0;  ///< estimates implying more are rejected as failures; valid (0, 1000]
-  // A road vehicle's largest acceleration (1 g: tyre friction) bounds how far a wide re-match may
-  // move the translation from the constant-velocity prediction.
-  double max_acceleration_mps2 = 10.0;  ///< physical bound on a re-match's velocity change; valid (0, 1000]
+  // A road vehicle's largest acceleration (1 g: tyre friction) bounds how far an estimate (and a
+  // wide re-match) may move the translation from the constant-velocity prediction; beyond it the
+  // scan is lost (constant-velocity prediction).
+  double max_acceleration_mps2 = 10.0;  ///< physical bound on the velocity change per scan; valid (0, 1000]
   int keep_keyframe_when_lost =
       2;  ///< consecutive lost scans with too few keypoints that keep the keyframe; valid [0, 1000]
   bool motion_compensation = true;
