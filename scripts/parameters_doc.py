@@ -98,8 +98,16 @@ def struct_defaults():
             for m in re.finditer(r"\nstruct (\w+) \{\n(.*?)\n\};", text, re.S):
                 fields = {}
                 body = re.sub(r"=\s*\n\s*", "= ", m.group(2))  # "x =\n    1.0;  ///< ..." (clang-format)
+                block = []  # a "/// ..." comment block above a field without a trailing ///<
                 for line in body.split("\n"):
+                    if line.strip().startswith("/// "):
+                        block.append(line.strip()[4:])
+                        continue
                     code, _, comment = line.partition("///<")
+                    if not comment.strip() and block:  # its first sentence, without the valid range
+                        text = re.sub(r";?\s*valid [\[(].*$", "", " ".join(block))
+                        comment = re.split(r"(?<=[a-z)])\. ", text)[0].rstrip(".")
+                    block = []
                     code = code.split("//")[0].strip()
                     fm = re.match(r"[\w:<>, ]+?\s+(\w+\s*(=|\{).*);$", code)
                     if not fm or "(" in code.split("=")[0]:

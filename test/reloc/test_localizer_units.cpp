@@ -152,6 +152,76 @@ TEST(RelocCovariance, HeadingFloorAddsTheModelErrorVarianceOnlyToTheHeading) {
   EXPECT_NEAR(b.covariance(0, 2), a.covariance(0, 2), 1e-15);
 }
 
+// A one-keyframe map at the origin holding `pts` (tracker tests on hand-made scenes).
+KeyframeMap oneKeyframeMap(const std::vector<Eigen::Vector2d>& pts) {
+  KeyframeMap m;
+  Keyframe k;
+  k.id = 0;
+  for (const auto& q : pts) k.points.push_back({static_cast<float>(q.x()), static_cast<float>(q.y()), 1.f});
+  m.keyframes.push_back(std::move(k));
+  return m;
+}
+
+std::vector<RadarPoint> scanOf(const std::vector<Eigen::Vector2d>& pts, double from_x, double to_x) {
+  std::vector<RadarPoint> scan;
+  for (const auto& q : pts)
+    if (q.x() >= from_x && q.x() <= to_x) {
+      RadarPoint p;
+      p.x = static_cast<float>(q.x());
+      p.y = static_cast<float>(q.y() + 0.02 * std::sin(7 * q.x()));
+      scan.push_back(p);
+    }
+  return scan;
+}
+
+TEST(RelocTracker, AStreetThatRepeatsEveryFewMetresIsDegenerateAlongIt) {
+  // Walls with posts every 2 m (a fence, parked cars in a row): the posts constrain the position
+  // along the street locally (sigma^2 H^-1 is small and round: the eigenvalue ratio test passes),
+  // but the scan fits as well 2 m further on. The fit profile makes it `degenerate` (fused with
+  // the prediction by the localiser), with the shift's variance along the street.
+  std::vector<Eigen::Vector2d> pts;
+  for (double x = -80; x <= 80; x += 0.2) {
+    pts.emplace_back(x, 6.0);
+    pts.emplace_back(x, -6.0);
+  }
+  for (double x = -80; x <= 80; x += 2.0)
+    for (double d = -0.2; d <= 0.21; d += 0.2) pts.emplace_back(x + d, 3.0), pts.emplace_back(x, 3.0 + d);
+  const KeyframeMap map = oneKeyframeMap(pts);
+  MapTrackerParams params;
+  params.submap.radius_m = 200;
+  params.submap.max_path_m = 0;
+  MapTracker tracker(map, params);
+  const TrackResult r = tracker.track(scanOf(pts, -50, 50), {0.3, 0.2, 0.005});
+  ASSERT_TRUE(r.icp.converged);
+  EXPECT_LT(std::hypot(r.icp.pose.x, r.icp.pose.y), 0.1);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> icp_only(
+      r.icp.covariance.topLeftCorner<2, 2>() - 4.0 * r.icp.weak_direction * r.icp.weak_direction.transpose());
+  EXPECT_LT(icp_only.eigenvalues()(1), 100 * icp_only.eigenvalues()(0)) << "the eigenvalue test would pass";
+  EXPECT_GT(r.icp.profile_fit, 0.97 * r.icp.fit_score);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_TRUE(r.degenerate) << r.reason;
+  EXPECT_GT(std::abs(r.icp.weak_direction.x()), 0.9) << "along the street";
+  EXPECT_GT(r.icp.covariance(0, 0), 4.0);
+
+  // Off: accepted as well constrained.
+  params.flat_profile_ratio = 1;
+  MapTracker trusting(map, params);
+  const TrackResult t = trusting.track(scanOf(pts, -50, 50), {0.3, 0.2, 0.005});
+  EXPECT_TRUE(t.accepted) << t.reason;
+}
+
+TEST(RelocTracker, AScatteredSceneHasASteepFitProfile) {
+  std::vector<Eigen::Vector2d> pts;
+  for (int i = 0; i < 600; ++i) pts.emplace_back(40 * std::sin(1.3 * i), 40 * std::cos(0.7 * i + 0.2));
+  const KeyframeMap map = oneKeyframeMap(pts);
+  MapTrackerParams params;
+  params.submap.max_path_m = 0;
+  MapTracker tracker(map, params);
+  const TrackResult r = tracker.track(scanOf(pts, -100, 100), {0.2, -0.1, 0.005});
+  EXPECT_TRUE(r.accepted) << r.reason;
+  EXPECT_LT(r.icp.profile_fit, 0.5 * r.icp.fit_score);
+}
+
 TEST(RelocParams, LoadFromYamlAndRejectUnknownKeys) {
   const YamlParams yaml = YamlParams::fromText(
       "localization:\n  max_missed_scans: 5\n  global:\n    candidates: 9\n    m2dp:\n      rings: 6\n"

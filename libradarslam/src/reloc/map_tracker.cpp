@@ -21,6 +21,7 @@ void loadParams(const YamlParams& yaml, MapTrackerParams& p) {
   yaml.get("max_jump_deg", p.max_jump_deg, Range::above(0, 180));
   yaml.get("max_position_sigma_m", p.max_position_sigma_m, Range::above(0, 1000));
   yaml.get("ambiguity_fit_ratio", p.ambiguity_fit_ratio, Range::closed(0, 1));
+  yaml.get("flat_profile_ratio", p.flat_profile_ratio, Range::closed(0, 1));
   p.min_inliers = static_cast<std::size_t>(min_inliers);
   loadParams(yaml.section("submap"), p.submap);
   loadParams(yaml.section("icp"), p.icp);
@@ -94,6 +95,9 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(r.covariance.topLeftCorner<2, 2>());
   const double sigma_xy = std::sqrt(std::max(0.0, es.eigenvalues()(1)));
   char buf[160];
+  if (std::getenv("RS_PROFILE_DEBUG"))
+    std::fprintf(stderr, "PROFILE %.3f %.3f %.3f %.3f\n", r.fit_score, r.profile_fit, r.weak_direction.x(),
+                 r.weak_direction.y());  // TEMP
   if (r.inliers < params_.min_inliers) {
     std::snprintf(buf, sizeof buf, "%zu inliers < %zu", r.inliers, params_.min_inliers);
   } else if (r.fit_score < params_.min_fit_score) {
@@ -104,6 +108,14 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
     std::snprintf(buf, sizeof buf, "jump %.2f m / %.1f deg from the prediction", jump, jump_deg);
   } else if (!(sigma_xy <= params_.max_position_sigma_m)) {
     std::snprintf(buf, sizeof buf, "position sigma %.2f m > %.2f m", sigma_xy, params_.max_position_sigma_m);
+    out.degenerate = true;
+  } else if (params_.flat_profile_ratio < 1 && r.profile_fit > 0 &&
+             r.profile_fit >= params_.flat_profile_ratio * r.fit_score) {
+    std::snprintf(buf, sizeof buf,
+                  "flat along its weakest direction: fit %.2f shifted %.1f m, %.2f at the solution",
+                  r.profile_fit, params_.icp.profile_shift_m, r.fit_score);
+    const double shift2 = params_.icp.profile_shift_m * params_.icp.profile_shift_m;
+    out.icp.covariance.topLeftCorner<2, 2>() += shift2 * r.weak_direction * r.weak_direction.transpose();
     out.degenerate = true;
   } else {
     out.accepted = true;

@@ -39,6 +39,7 @@ void loadParams(const YamlParams& yaml, IcpParams& p) {
   yaml.get("position_sigma_floor_m", p.position_sigma_floor_m, Range::closed(0, 100));
   yaml.get("slam_map_heading_sigma_floor_deg", p.slam_map_heading_sigma_floor_deg, Range::closed(0, 90));
   yaml.get("slam_map_position_sigma_floor_m", p.slam_map_position_sigma_floor_m, Range::closed(0, 100));
+  yaml.get("profile_shift_m", p.profile_shift_m, Range::closed(0, 100));
   if (p.max_correspondence_m < p.inlier_distance_m)
     yaml.fail("max_correspondence_m", "must be >= inlier_distance_m");
   p.max_scan_points = static_cast<std::size_t>(max_points);
@@ -268,6 +269,21 @@ IcpResult LocalSubmap::registerScan(std::span<const RadarPoint> scan, const mrpt
     res.covariance(1, 1) += floor_m2;
   } else {
     res.covariance = Eigen::Matrix3d::Identity() * 1e6;
+  }
+  if (params.profile_shift_m > 0 && inliers >= 3) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> exy(res.covariance.topLeftCorner<2, 2>());
+    res.weak_direction = exy.eigenvectors().col(1).normalized();
+    const double c = std::cos(th), s = std::sin(th),
+                 gate2 = params.inlier_distance_m * params.inlier_distance_m;
+    for (const double sign : {-1.0, 1.0}) {
+      const Vec2 t = Vec2(x, y) + sign * params.profile_shift_m * res.weak_direction;
+      std::size_t n = 0;
+      for (const Vec2& p : src)
+        if (impl_->index.nearest(Vec2(c * p.x() - s * p.y() + t.x(), s * p.x() + c * p.y() + t.y())).first <=
+            gate2)
+          ++n;
+      res.profile_fit = std::max(res.profile_fit, static_cast<double>(n) / static_cast<double>(src.size()));
+    }
   }
   return res;
 }

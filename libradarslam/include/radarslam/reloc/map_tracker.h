@@ -30,6 +30,14 @@ struct MapTrackerParams {
   /// this fraction of the tracked alignment's fit score: reported as ambiguous; valid [0, 1]
   /// (1 = only an equally good second copy; 0 = any alignment of the other copy).
   double ambiguity_fit_ratio = 0.8;
+  /// The registration keeps at least this fraction of its fit score with the solution shifted by
+  /// icp.profile_shift_m along its weakest direction (IcpResult::profile_fit): the cost is flat
+  /// there (a featureless wall, a row of look-alike posts), the position along it is known only to
+  /// about the shift, whatever sigma^2 H^-1 says. The scan is then `degenerate` (fused with the
+  /// prediction) and its covariance gets profile_shift_m^2 along that direction. The 99th
+  /// percentile of the ratio over the tracked scans of the train sequences (a 1 % false-alarm
+  /// rate; docs/localization.md); valid [0, 1], 1 = off.
+  double flat_profile_ratio = 0.975;
 };
 
 /// Overrides from min_fit_score, min_inliers, max_rms_m, max_jump_m, max_jump_deg,
@@ -39,8 +47,9 @@ void loadParams(const YamlParams& yaml, MapTrackerParams& params);
 struct TrackResult {
   bool accepted = false;
   std::string reason;  ///< why not (empty when accepted)
-  /// Rejected only by max_position_sigma_m (a weak direction, e.g. a corridor): every other test
-  /// passed, so the registration can still be fused with a prediction (reloc/integrity.h).
+  /// Rejected only by max_position_sigma_m or flat_profile_ratio (a weak direction, e.g. a
+  /// corridor): every other test passed, so the registration can still be fused with a prediction
+  /// (reloc/integrity.h).
   bool degenerate = false;
   IcpResult icp;
   bool submap_rebuilt = false;
