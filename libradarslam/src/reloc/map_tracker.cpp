@@ -95,9 +95,6 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(r.covariance.topLeftCorner<2, 2>());
   const double sigma_xy = std::sqrt(std::max(0.0, es.eigenvalues()(1)));
   char buf[160];
-  if (std::getenv("RS_PROFILE_DEBUG"))
-    std::fprintf(stderr, "PROFILE %.3f %.3f %.3f %.3f\n", r.fit_score, r.profile_fit, r.weak_direction.x(),
-                 r.weak_direction.y());  // TEMP
   if (r.inliers < params_.min_inliers) {
     std::snprintf(buf, sizeof buf, "%zu inliers < %zu", r.inliers, params_.min_inliers);
   } else if (r.fit_score < params_.min_fit_score) {
@@ -109,11 +106,10 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
   } else if (!(sigma_xy <= params_.max_position_sigma_m)) {
     std::snprintf(buf, sizeof buf, "position sigma %.2f m > %.2f m", sigma_xy, params_.max_position_sigma_m);
     out.degenerate = true;
-  } else if (params_.flat_profile_ratio < 1 && r.profile_fit > 0 &&
-             r.profile_fit >= params_.flat_profile_ratio * r.fit_score) {
+  } else if (params_.flat_profile_ratio < 1 && r.profile_ratio >= params_.flat_profile_ratio) {
     std::snprintf(buf, sizeof buf,
-                  "flat along its weakest direction: fit %.2f shifted %.1f m, %.2f at the solution",
-                  r.profile_fit, params_.icp.profile_shift_m, r.fit_score);
+                  "flat along its weakest direction: %.0f %% of the cost %.1f m away is already there",
+                  100 * r.profile_ratio, params_.icp.profile_shift_m);
     const double shift2 = params_.icp.profile_shift_m * params_.icp.profile_shift_m;
     out.icp.covariance.topLeftCorner<2, 2>() += shift2 * r.weak_direction * r.weak_direction.transpose();
     out.degenerate = true;
