@@ -28,8 +28,10 @@ void loadParams(const YamlParams& yaml, MapTrackerParams& p) {
 }
 
 namespace {
-// The registration's model errors for this kind of map (IcpParams: raw sweeps or SLAM clouds).
+// The registration's model errors for this kind of map (IcpParams: raw sweeps or SLAM clouds);
+// the cost profile only when check (g) uses it.
 MapTrackerParams forMap(MapTrackerParams p, const KeyframeMap& map) {
+  if (p.flat_profile_ratio >= 1) p.icp.profile_shift_m = 0;
   if (map.meta.clouds_motion_compensated) {
     p.icp.heading_sigma_floor_deg = p.icp.slam_map_heading_sigma_floor_deg;
     p.icp.position_sigma_floor_m = p.icp.slam_map_position_sigma_floor_m;
