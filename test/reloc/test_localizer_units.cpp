@@ -190,7 +190,6 @@ TEST(RelocTracker, AStreetThatRepeatsEveryFewMetresIsDegenerateAlongIt) {
   MapTrackerParams params;
   params.submap.radius_m = 200;
   params.submap.max_path_m = 0;
-  params.flat_profile_ratio = 0.9;  // check (g) on (off by default)
   MapTracker tracker(map, params);
   const TrackResult r = tracker.track(scanOf(pts, -50, 50), {0.3, 0.2, 0.005});
   ASSERT_TRUE(r.icp.converged);
@@ -198,7 +197,7 @@ TEST(RelocTracker, AStreetThatRepeatsEveryFewMetresIsDegenerateAlongIt) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> icp_only(
       r.icp.covariance.topLeftCorner<2, 2>() - 4.0 * r.icp.weak_direction * r.icp.weak_direction.transpose());
   EXPECT_LT(icp_only.eigenvalues()(1), 100 * icp_only.eigenvalues()(0)) << "the eigenvalue test would pass";
-  EXPECT_GT(r.icp.profile_ratio, 0.9);
+  EXPECT_GT(r.icp.profile_fit, 0.97 * r.icp.fit_score);
   EXPECT_FALSE(r.accepted);
   EXPECT_TRUE(r.degenerate) << r.reason;
   EXPECT_GT(std::abs(r.icp.weak_direction.x()), 0.9) << "along the street";
@@ -217,11 +216,10 @@ TEST(RelocTracker, AScatteredSceneHasASteepFitProfile) {
   const KeyframeMap map = oneKeyframeMap(pts);
   MapTrackerParams params;
   params.submap.max_path_m = 0;
-  params.flat_profile_ratio = 0.9;
   MapTracker tracker(map, params);
   const TrackResult r = tracker.track(scanOf(pts, -100, 100), {0.2, -0.1, 0.005});
   EXPECT_TRUE(r.accepted) << r.reason;
-  EXPECT_LT(r.icp.profile_ratio, 0.5);
+  EXPECT_LT(r.icp.profile_fit, 0.5 * r.icp.fit_score);
 }
 
 TEST(RelocParams, LoadFromYamlAndRejectUnknownKeys) {

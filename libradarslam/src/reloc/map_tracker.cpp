@@ -29,7 +29,7 @@ void loadParams(const YamlParams& yaml, MapTrackerParams& p) {
 
 namespace {
 // The registration's model errors for this kind of map (IcpParams: raw sweeps or SLAM clouds);
-// the cost profile only when check (g) uses it.
+// the fit profile only when check (g) uses it.
 MapTrackerParams forMap(MapTrackerParams p, const KeyframeMap& map) {
   if (p.flat_profile_ratio >= 1) p.icp.profile_shift_m = 0;
   if (map.meta.clouds_motion_compensated) {
@@ -108,10 +108,11 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
   } else if (!(sigma_xy <= params_.max_position_sigma_m)) {
     std::snprintf(buf, sizeof buf, "position sigma %.2f m > %.2f m", sigma_xy, params_.max_position_sigma_m);
     out.degenerate = true;
-  } else if (params_.flat_profile_ratio < 1 && r.profile_ratio >= params_.flat_profile_ratio) {
+  } else if (params_.flat_profile_ratio < 1 && r.profile_fit > 0 &&
+             r.profile_fit >= params_.flat_profile_ratio * r.fit_score) {
     std::snprintf(buf, sizeof buf,
-                  "flat along its weakest direction: %.0f %% of the cost %.1f m away is already there",
-                  100 * r.profile_ratio, params_.icp.profile_shift_m);
+                  "flat along its weakest direction: fit %.2f shifted %.1f m, %.2f at the solution",
+                  r.profile_fit, params_.icp.profile_shift_m, r.fit_score);
     const double shift2 = params_.icp.profile_shift_m * params_.icp.profile_shift_m;
     out.icp.covariance.topLeftCorner<2, 2>() += shift2 * r.weak_direction * r.weak_direction.transpose();
     out.degenerate = true;

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <unordered_map>
 
 #include "radarslam/core/errors.h"
@@ -272,26 +271,19 @@ IcpResult LocalSubmap::registerScan(std::span<const RadarPoint> scan, const mrpt
     res.covariance = Eigen::Matrix3d::Identity() * 1e6;
   }
   if (params.profile_shift_m > 0 && inliers >= 3) {
-    // The scan's mean robust (Cauchy) cost, each point's distance capped at the inlier gate, at
-    // the solution and shifted by +-profile_shift_m along the weakest direction.
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> exy(res.covariance.topLeftCorner<2, 2>());
     res.weak_direction = exy.eigenvectors().col(1).normalized();
     const double c = std::cos(th), s = std::sin(th),
                  gate2 = params.inlier_distance_m * params.inlier_distance_m;
-    auto meanCost = [&](const Vec2& t) {
-      double sum = 0;
-      for (const Vec2& p : src) {
-        const double d2 =
-            impl_->index.nearest(Vec2(c * p.x() - s * p.y() + t.x(), s * p.x() + c * p.y() + t.y())).first;
-        sum += std::log1p(std::min(d2, gate2) / c2);
-      }
-      return sum / static_cast<double>(src.size());
-    };
-    const double at_solution = meanCost(Vec2(x, y));
-    double shifted = std::numeric_limits<double>::infinity();
-    for (const double sign : {-1.0, 1.0})
-      shifted = std::min(shifted, meanCost(Vec2(x, y) + sign * params.profile_shift_m * res.weak_direction));
-    res.profile_ratio = shifted > 0 ? std::min(1.0, at_solution / shifted) : 1.0;
+    for (const double sign : {-1.0, 1.0}) {
+      const Vec2 t = Vec2(x, y) + sign * params.profile_shift_m * res.weak_direction;
+      std::size_t n = 0;
+      for (const Vec2& p : src)
+        if (impl_->index.nearest(Vec2(c * p.x() - s * p.y() + t.x(), s * p.x() + c * p.y() + t.y())).first <=
+            gate2)
+          ++n;
+      res.profile_fit = std::max(res.profile_fit, static_cast<double>(n) / static_cast<double>(src.size()));
+    }
   }
   return res;
 }

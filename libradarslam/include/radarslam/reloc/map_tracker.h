@@ -30,14 +30,14 @@ struct MapTrackerParams {
   /// this fraction of the tracked alignment's fit score: reported as ambiguous; valid [0, 1]
   /// (1 = only an equally good second copy; 0 = any alignment of the other copy).
   double ambiguity_fit_ratio = 0.8;
-  /// The registration's robust cost is flat along its weakest direction when the cost at the
-  /// solution is at least this fraction of the cost icp.profile_shift_m away
-  /// (IcpResult::profile_ratio; a featureless wall, a row of look-alike posts): the position along
-  /// it is known only to about the shift, whatever sigma^2 H^-1 says. The scan is then
-  /// `degenerate` (fused with the prediction) with profile_shift_m^2 added along that direction.
-  /// Off by default (1): no threshold chosen on the train split has yet separated the slides it is
-  /// meant for from car parks and dense streets (docs/localization.md, check (g)); valid [0, 1].
-  double flat_profile_ratio = 1.0;
+  /// The registration keeps at least this fraction of its fit score with the solution shifted by
+  /// icp.profile_shift_m along its weakest direction (IcpResult::profile_fit): the cost is flat
+  /// there (a featureless wall, a row of look-alike posts), the position along it is known only to
+  /// about the shift, whatever sigma^2 H^-1 says. The scan is then `degenerate` (fused with the
+  /// prediction) and its covariance gets profile_shift_m^2 along that direction. The 99th
+  /// percentile of the ratio over the tracked scans of the train sequences (a 1 % false-alarm
+  /// rate; docs/localization.md); valid [0, 1], 1 = off.
+  double flat_profile_ratio = 0.975;
 };
 
 /// Overrides from min_fit_score, min_inliers, max_rms_m, max_jump_m, max_jump_deg,

@@ -67,11 +67,10 @@ struct IcpParams {
   /// grid-s1-clear as sqrt(mean(e^2 - sigma_icp^2)) (docs/localization.md); valid [0, 90] / [0, 100]
   double slam_map_heading_sigma_floor_deg = 0.14;  ///< heading model error, maps of compensated clouds
   double slam_map_position_sigma_floor_m = 0.035;  ///< position model error, maps of compensated clouds
-  /// The cost profile along the weakest position direction: the scan's robust cost is also
-  /// evaluated with the solution shifted by +-profile_shift_m along the largest-variance xy
-  /// eigenvector (IcpResult::profile_ratio). A cost that stays flat there (a featureless wall) is a
-  /// direction the curvature sigma^2 H^-1 cannot be trusted in, whatever its size. 0 = not
-  /// evaluated; valid [0, 100]
+  /// The fit profile along the weakest position direction: the fit score is also evaluated with the
+  /// solution shifted by +-profile_shift_m along the largest-variance xy eigenvector (IcpResult::
+  /// profile_fit). A cost that stays flat there (a featureless wall) is a direction the curvature
+  /// sigma^2 H^-1 cannot be trusted in, whatever its size. 0 = not evaluated; valid [0, 100]
   double profile_shift_m = 2.0;
 };
 
@@ -85,10 +84,9 @@ struct IcpResult {
   std::size_t inliers = 0;
   std::size_t scan_points = 0;
   double rms_m = 0;  ///< inlier residual RMS
-  /// The scan's mean robust cost (Cauchy, distances capped at the inlier gate) at the solution
-  /// divided by the lower one of the solution shifted by +-IcpParams::profile_shift_m along
-  /// weak_direction: near 1 = the cost is flat along it, near 0 = steep (0 when not evaluated).
-  double profile_ratio = 0;
+  /// The better fit score of the solution shifted by +-IcpParams::profile_shift_m along
+  /// weak_direction (0 when not evaluated).
+  double profile_fit = 0;
   Eigen::Vector2d weak_direction = Eigen::Vector2d::UnitX();  ///< largest-variance xy direction (unit)
   int iterations = 0;
   bool converged = false;
