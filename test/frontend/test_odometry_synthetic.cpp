@@ -165,12 +165,17 @@ TEST(OdometrySynthetic, VehicleFixedStructureDoesNotStopTheEstimate) {
         for (std::uint32_t b = b0; b < b0 + 3; ++b) s.row(a)[b] = 255;
     }
   };
-  OdometryParams fixed;
-  fixed.matching.adaptive_radius = false;
-  const RunResult paper = run(fixed, straight, 16, vehicleFixed);
+  OdometryParams paper_rule;  // the paper's fixed radius, no acceleration bound on the estimate
+  paper_rule.matching.adaptive_radius = false;
+  paper_rule.tracking.max_acceleration_mps2 = 1000;
+  OdometryParams fixed_bounded;  // fixed radius, but the 1 g bound rejects a 60 m/s^2 stop
+  fixed_bounded.matching.adaptive_radius = false;
+  const RunResult paper = run(paper_rule, straight, 16, vehicleFixed);
+  const RunResult bounded = run(fixed_bounded, straight, 16, vehicleFixed);
   const RunResult adaptive = run(OdometryParams{}, straight, 16, vehicleFixed);
   for (int k = 13; k < 16; ++k) {
     EXPECT_LT(paper.steps[k].motion.x, 1.0) << "scan " << k << ": the test no longer shows the failure";
+    EXPECT_GT(bounded.steps[k].motion.x, 3.0) << "scan " << k;  // lost: constant-velocity prediction
     EXPECT_NEAR(adaptive.steps[k].motion.x, 3.75, 0.1) << "scan " << k;
   }
 }
