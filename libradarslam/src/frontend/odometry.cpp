@@ -248,7 +248,6 @@ struct RadarOdometry::Impl {
     // matched at zero motion).
     const double accel_reach = params.tracking.max_acceleration_mps2 * dt * dt * (1 + lost_count);
     const double keypoint_sigma_m = params.matching.keypoint_sigma_px * params.cartesian.m_per_px;
-    double estimate_gate_m = accel_reach;  // + the estimate's noise, once it is known
     auto physicallyPossible = [&](const mrpt::math::TPose2D& estimate, double noise_m) {
       const mrpt::math::TPose2D deviation = estimate - prior;
       return std::hypot(deviation.x, deviation.y) <= accel_reach + noise_m;
@@ -374,10 +373,13 @@ struct RadarOdometry::Impl {
       // observations (keypoint noise / sqrt(n)), not the search radius (which bounds one keypoint).
       const double estimate_noise_m = params.matching.radius_sigmas * std::sqrt(2.0) * keypoint_sigma_m /
                                       std::sqrt(std::max(1.0, static_cast<double>(obs.size())));
-      estimate_gate_m = accel_reach + estimate_noise_m;
       if (ok && velocity_known && !gap && !physicallyPossible(T, estimate_noise_m)) {
         ok = false;
         step.implausible = true;
+        logger().logFmt(mrpt::system::LVL_WARN,
+                        "odometry: tracking lost at %.3f s (the estimate leaves the constant-velocity "
+                        "prediction by more than %.2f m: no road vehicle accelerates that hard)",
+                        toSeconds(step.stamp), accel_reach + estimate_noise_m);
       }
     }
     cur_compensation = currentVelocity(v);
@@ -426,12 +428,7 @@ struct RadarOdometry::Impl {
         step.new_keyframe = true;
         step.keyframe_points = keyframe.features.xy;
       }
-      if (step.implausible)
-        logger().logFmt(mrpt::system::LVL_WARN,
-                        "odometry: tracking lost at %.3f s (the estimate leaves the constant-velocity "
-                        "prediction by more than %.2f m: no road vehicle accelerates that hard)",
-                        toSeconds(step.stamp), estimate_gate_m);
-      else
+      if (!step.implausible)  // (an implausible estimate was reported where it was found)
         logger().logFmt(mrpt::system::LVL_WARN, "odometry: tracking lost at %.3f s (%d matches, %d inliers)",
                         toSeconds(step.stamp), step.matches, step.inliers);
     }

@@ -3,7 +3,10 @@
 
 #include <openssl/evp.h>
 
+#include <algorithm>
 #include <stdexcept>
+
+#include "manifest_strings.h"
 
 namespace radarslam {
 
@@ -56,10 +59,9 @@ bool isSha256Hex(std::string_view text) {
 
 std::optional<std::array<unsigned char, 32>> sha256FromHex(std::string_view text) {
   if (!isSha256Hex(text)) return std::nullopt;
-  const auto digit = [](char c) { return c <= '9' ? c - '0' : c - 'a' + 10; };
+  const std::optional<std::string> bytes = mapcodec::hexDecode(std::string(text));
   std::array<unsigned char, 32> out{};
-  for (std::size_t i = 0; i < out.size(); ++i)
-    out[i] = static_cast<unsigned char>(digit(text[2 * i]) * 16 + digit(text[2 * i + 1]));
+  std::copy(bytes->begin(), bytes->end(), out.begin());
   return out;
 }
 
