@@ -222,6 +222,74 @@ TEST(RelocTracker, AScatteredSceneHasASteepFitProfile) {
   EXPECT_LT(r.icp.profile_fit, 0.5 * r.icp.fit_score);
 }
 
+// Walls on both sides of a street and a post every 4 m: the posts fix the position along the
+// street only to within a period.
+std::vector<Eigen::Vector2d> streetWithPostsEvery4m() {
+  std::vector<Eigen::Vector2d> pts;
+  for (double x = -80; x <= 80; x += 0.2) {
+    pts.emplace_back(x, 6.0);
+    pts.emplace_back(x, -6.0);
+  }
+  for (double x = -80; x <= 80; x += 4.0)
+    for (double d = -0.2; d <= 0.21; d += 0.2) pts.emplace_back(x + d, 3.0), pts.emplace_back(x, 3.0 + d);
+  return pts;
+}
+
+TEST(RelocTracker, AWidePredictionIsAReacquisitionThatTestsTheOtherAlignments) {
+  // After a degraded stretch the prediction is known to +-6 m (3 sigma) along the street. The
+  // registration from it lands on the look-alike post 4 m on; the fit profile (2 m) does not see
+  // it (the posts lose their match halfway between). Check (h) registers from further starts
+  // within the prediction, finds alignments 4 m apart fitting as well: degenerate, with their
+  // spread in the covariance.
+  const std::vector<Eigen::Vector2d> pts = streetWithPostsEvery4m();
+  const KeyframeMap map = oneKeyframeMap(pts);
+  MapTrackerParams params;
+  params.submap.radius_m = 200;
+  params.submap.max_path_m = 0;
+  const mrpt::math::TPose2D predicted{3.6, 0.1, 0.0};
+  const Eigen::Matrix3d wide = Eigen::Vector3d(4.0, 0.01, 1e-4).asDiagonal();
+  {
+    MapTracker tracker(map, params);
+    const TrackResult r = tracker.track(scanOf(pts, -50, 50), predicted, -1, &wide);
+    EXPECT_TRUE(r.reacquisition);
+    EXPECT_TRUE(r.reacquisition_ambiguous);
+    EXPECT_FALSE(r.accepted);
+    EXPECT_TRUE(r.degenerate) << r.reason;
+    EXPECT_GT(r.icp.covariance(0, 0), 4.0) << "the alignments' spread along the street";
+    EXPECT_LT(r.icp.covariance(1, 1), 0.1) << "across it the walls still fix the position";
+  }
+  {  // without the prediction's covariance: trusted 4 m off
+    MapTracker tracker(map, params);
+    const TrackResult r = tracker.track(scanOf(pts, -50, 50), predicted);
+    EXPECT_FALSE(r.reacquisition);
+    EXPECT_TRUE(r.accepted) << r.reason;
+    EXPECT_NEAR(r.icp.pose.x, 4.0, 0.1);
+  }
+  {  // off
+    params.reacquisition_starts = 0;
+    MapTracker tracker(map, params);
+    EXPECT_TRUE(tracker.track(scanOf(pts, -50, 50), predicted, -1, &wide).accepted);
+  }
+}
+
+TEST(RelocTracker, AReacquisitionInADistinctSceneFindsTheOneAlignment) {
+  std::vector<Eigen::Vector2d> pts;
+  for (int i = 0; i < 600; ++i) pts.emplace_back(40 * std::sin(1.3 * i), 40 * std::cos(0.7 * i + 0.2));
+  const KeyframeMap map = oneKeyframeMap(pts);
+  MapTrackerParams params;
+  params.submap.max_path_m = 0;
+  MapTracker tracker(map, params);
+  const Eigen::Matrix3d wide = Eigen::Vector3d(2.0, 1.0, 1e-4).asDiagonal();
+  const TrackResult r = tracker.track(scanOf(pts, -100, 100), {0.8, -0.4, 0.005}, -1, &wide);
+  EXPECT_TRUE(r.reacquisition);
+  EXPECT_FALSE(r.reacquisition_ambiguous);
+  EXPECT_TRUE(r.accepted) << r.reason;
+  EXPECT_LT(std::hypot(r.icp.pose.x, r.icp.pose.y), 0.1);
+  // A narrow prediction is ordinary tracking.
+  const Eigen::Matrix3d narrow = Eigen::Vector3d(0.01, 0.01, 1e-5).asDiagonal();
+  EXPECT_FALSE(tracker.track(scanOf(pts, -100, 100), {0.2, -0.1, 0.005}, -1, &narrow).reacquisition);
+}
+
 TEST(RelocParams, LoadFromYamlAndRejectUnknownKeys) {
   const YamlParams yaml = YamlParams::fromText(
       "localization:\n  max_missed_scans: 5\n  global:\n    candidates: 9\n    m2dp:\n      rings: 6\n"
@@ -241,6 +309,8 @@ TEST(RelocParams, LoadFromYamlAndRejectUnknownKeys) {
   EXPECT_THROW(typo.rejectUnknownKeys(), InputError);
   const YamlParams bad = YamlParams::fromText("localization:\n  tracker:\n    min_fit_score: 2\n");
   EXPECT_THROW(loadParams(bad.section("localization"), q), InputError);
+  const YamlParams starts = YamlParams::fromText("localization:\n  tracker:\n    reacquisition_starts: 11\n");
+  EXPECT_THROW(loadParams(starts.section("localization"), q), InputError);
 }
 
 }  // namespace

@@ -213,7 +213,7 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     const mrpt::math::TPose2D predicted = compose(m.pose, step.motion);
     const Eigen::Matrix3d predicted_cov = composeCovariance(m.pose, m.cov, step.motion, odo_cov);
     m.window.addMotion(step.motion, odo_cov);
-    const TrackResult tr = m.tracker.track(cloud, predicted, m.anchor);
+    const TrackResult tr = m.tracker.track(cloud, predicted, m.anchor, &predicted_cov);
     res.fit_score = tr.icp.fit_score;
     res.inliers = tr.icp.inliers;
     const IcpResult& r = tr.icp;
@@ -237,7 +237,7 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
         Eigen::Matrix3d fused_cov;
         fusePoses(predicted, predicted_cov, r.pose, r.covariance, fused, fused_cov);
         report(fused, fused_cov, LocalizationStatus::Degraded, tr.anchor);
-        res.check = "degenerate";
+        res.check = tr.reacquisition_ambiguous ? "reacquisition" : "degenerate";
       } else if (const MapCoverage cover = mapCoverage(m.map, r.pose, ip); cover.outside) {
         // Check (f): outside the mapped path; relative to the map as uncertain as the odometry
         // over the distance from the nearest keyframe.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "radarslam/core/errors.h"
 #include "radarslam/core/yaml_params.h"
@@ -22,21 +23,27 @@ void loadParams(const YamlParams& yaml, MapTrackerParams& p) {
   yaml.get("max_position_sigma_m", p.max_position_sigma_m, Range::above(0, 1000));
   yaml.get("ambiguity_fit_ratio", p.ambiguity_fit_ratio, Range::closed(0, 1));
   yaml.get("flat_profile_ratio", p.flat_profile_ratio, Range::closed(0, 1));
+  yaml.get("reacquisition_starts", p.reacquisition_starts, Range::closed(0, 10));
   p.min_inliers = static_cast<std::size_t>(min_inliers);
   loadParams(yaml.section("submap"), p.submap);
   loadParams(yaml.section("icp"), p.icp);
 }
 
 namespace {
-// The registration's model errors for this kind of map (IcpParams: raw sweeps or SLAM clouds);
-// the fit profile only when check (g) uses it.
+// The registration's model errors for this kind of map (IcpParams: raw sweeps or SLAM clouds).
 MapTrackerParams forMap(MapTrackerParams p, const KeyframeMap& map) {
-  if (p.flat_profile_ratio >= 1) p.icp.profile_shift_m = 0;
   if (map.meta.clouds_motion_compensated) {
     p.icp.heading_sigma_floor_deg = p.icp.slam_map_heading_sigma_floor_deg;
     p.icp.position_sigma_floor_m = p.icp.slam_map_position_sigma_floor_m;
   }
   return p;
+}
+
+/// Two registrations of one scan are different alignments: farther apart than the inlier gate, or
+/// more than 1 deg.
+bool differentAlignments(const IcpResult& a, const IcpResult& b, const IcpParams& icp) {
+  return std::hypot(a.pose.x - b.pose.x, a.pose.y - b.pose.y) > icp.inlier_distance_m ||
+         std::abs(std::remainder(a.pose.phi - b.pose.phi, 2 * M_PI)) * 180.0 / M_PI > 1.0;
 }
 }  // namespace
 
@@ -58,8 +65,54 @@ void MapTracker::rebuild(const mrpt::math::TPose2D& predicted, long anchor) {
   if (other.keyframes() > 0) other_ = std::move(other);
 }
 
+void MapTracker::reacquire(std::span<const RadarPoint> cloud, const mrpt::math::TPose2D& predicted,
+                           const Eigen::Matrix3d& predicted_cov, TrackResult& out) const {
+  // Wide = 3 sigma along the largest xy axis beyond the inlier gate, what tells two alignments
+  // apart (differentAlignments).
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(predicted_cov.topLeftCorner<2, 2>());
+  const double reach = 3 * std::sqrt(std::max(0.0, es.eigenvalues()(1)));
+  if (params_.reacquisition_starts <= 0 || !(reach > params_.icp.inlier_distance_m)) return;
+  out.reacquisition = true;
+  // Starts spaced by the ICP's capture range (its first gate), out to 3 sigma.
+  const Eigen::Vector2d axis = es.eigenvectors().col(1).normalized();
+  const double step = std::min(reach, params_.icp.max_correspondence_m);
+  const int per_side =
+      std::min(params_.reacquisition_starts, static_cast<int>(std::ceil(reach / step - 1e-9)));
+  std::vector<mrpt::math::TPose2D> from;
+  for (int k = 1; k <= per_side; ++k)
+    for (const double sign : {-1.0, 1.0})
+      from.push_back({predicted.x + sign * k * step * axis.x(), predicted.y + sign * k * step * axis.y(),
+                      predicted.phi});
+  std::vector<IcpResult> found{out.icp};
+  for (const auto& start : from) {
+    IcpResult r = submap_->registerScan(cloud, start, params_.icp, checksProfile());
+    if (r.inliers >= params_.min_inliers) found.push_back(std::move(r));
+  }
+  // The first best wins a tie: the registration from the prediction itself.
+  const auto best = std::max_element(found.begin(), found.end(), [](const IcpResult& a, const IcpResult& b) {
+    return a.fit_score < b.fit_score;
+  });
+  const IcpResult kept = *best;
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+  int rivals = 0;
+  for (const IcpResult& r : found) {
+    if (!differentAlignments(r, kept, params_.icp) ||
+        r.fit_score < params_.ambiguity_fit_ratio * kept.fit_score)
+      continue;
+    const Eigen::Vector3d d(r.pose.x - kept.pose.x, r.pose.y - kept.pose.y,
+                            std::remainder(r.pose.phi - kept.pose.phi, 2 * M_PI));
+    spread += d * d.transpose();
+    ++rivals;
+  }
+  out.icp = kept;
+  if (rivals > 0) {
+    out.reacquisition_ambiguous = true;
+    out.icp.covariance += spread / static_cast<double>(rivals + 1);  // second moment, the kept one at 0
+  }
+}
+
 TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::math::TPose2D& predicted,
-                              long anchor) {
+                              long anchor, const Eigen::Matrix3d* predicted_cov) {
   TrackResult out;
   // Rebuilt when the prediction moved far enough, or when asked to track another copy (an anchor
   // the current submap does not hold, e.g. after a new global fix).
@@ -80,17 +133,16 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
     out.reason = "no map keyframe near the predicted pose";
     return out;
   }
-  out.icp = submap_->registerScan(cloud, predicted, params_.icp);
+  out.icp = submap_->registerScan(cloud, predicted, params_.icp, checksProfile());
+  if (predicted_cov) reacquire(cloud, predicted, *predicted_cov, out);
   const IcpResult& r = out.icp;
   out.anchor = nearestKeyframe(map_, submap_->keyframeIndices(), r.pose.x, r.pose.y);
   if (other_) {  // a second copy of this place: does it explain the scan elsewhere as well?
     out.alternative = other_->registerScan(cloud, predicted, params_.icp);
     const IcpResult& a = out.alternative;
-    const double apart = std::hypot(a.pose.x - r.pose.x, a.pose.y - r.pose.y);
-    const double apart_deg = std::abs(std::remainder(a.pose.phi - r.pose.phi, 2 * M_PI)) * 180.0 / M_PI;
     out.ambiguous = a.inliers >= params_.min_inliers &&
                     a.fit_score >= params_.ambiguity_fit_ratio * r.fit_score &&
-                    (apart > params_.icp.inlier_distance_m || apart_deg > 1.0);
+                    differentAlignments(a, r, params_.icp);
   }
   const double jump = std::hypot(r.pose.x - predicted.x, r.pose.y - predicted.y);
   const double jump_deg = std::abs(std::remainder(r.pose.phi - predicted.phi, 2 * M_PI)) * 180.0 / M_PI;
@@ -105,10 +157,14 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
     std::snprintf(buf, sizeof buf, "rms %.2f m > %.2f m", r.rms_m, params_.max_rms_m);
   } else if (jump > params_.max_jump_m || jump_deg > params_.max_jump_deg) {
     std::snprintf(buf, sizeof buf, "jump %.2f m / %.1f deg from the prediction", jump, jump_deg);
+  } else if (out.reacquisition_ambiguous) {
+    std::snprintf(buf, sizeof buf,
+                  "re-acquisition: another alignment within the prediction's 3 sigma fits as well");
+    out.degenerate = true;
   } else if (!(sigma_xy <= params_.max_position_sigma_m)) {
     std::snprintf(buf, sizeof buf, "position sigma %.2f m > %.2f m", sigma_xy, params_.max_position_sigma_m);
     out.degenerate = true;
-  } else if (params_.flat_profile_ratio < 1 && r.profile_fit > 0 &&
+  } else if (checksProfile() && r.profile_fit > 0 &&
              r.profile_fit >= params_.flat_profile_ratio * r.fit_score) {
     std::snprintf(buf, sizeof buf,
                   "flat along its weakest direction: fit %.2f shifted %.1f m, %.2f at the solution",

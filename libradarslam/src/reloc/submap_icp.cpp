@@ -183,7 +183,7 @@ LocalSubmap LocalSubmap::fromPoints(std::vector<Eigen::Vector2d> map_points, dou
 }
 
 IcpResult LocalSubmap::registerScan(std::span<const RadarPoint> scan, const mrpt::math::TPose2D& initial,
-                                    const IcpParams& params) const {
+                                    const IcpParams& params, bool fit_profile) const {
   IcpResult res;
   res.pose = initial;
   const std::vector<Vec2> src = thinScan(scan, params.scan_voxel_m, params.max_scan_points);
@@ -270,18 +270,19 @@ IcpResult LocalSubmap::registerScan(std::span<const RadarPoint> scan, const mrpt
   } else {
     res.covariance = Eigen::Matrix3d::Identity() * 1e6;
   }
-  if (params.profile_shift_m > 0 && inliers >= 3) {
+  if (fit_profile && params.profile_shift_m > 0 && inliers >= 3) {
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> exy(res.covariance.topLeftCorner<2, 2>());
     res.weak_direction = exy.eigenvectors().col(1).normalized();
     const double c = std::cos(th), s = std::sin(th),
                  gate2 = params.inlier_distance_m * params.inlier_distance_m;
+    std::vector<Vec2> placed;  // the scan at the solution
+    placed.reserve(src.size());
+    for (const Vec2& p : src) placed.emplace_back(c * p.x() - s * p.y() + x, s * p.x() + c * p.y() + y);
     for (const double sign : {-1.0, 1.0}) {
-      const Vec2 t = Vec2(x, y) + sign * params.profile_shift_m * res.weak_direction;
+      const Vec2 shift = sign * params.profile_shift_m * res.weak_direction;
       std::size_t n = 0;
-      for (const Vec2& p : src)
-        if (impl_->index.nearest(Vec2(c * p.x() - s * p.y() + t.x(), s * p.x() + c * p.y() + t.y())).first <=
-            gate2)
-          ++n;
+      for (const Vec2& q : placed)
+        if (impl_->index.nearest(q + shift).first <= gate2) ++n;
       res.profile_fit = std::max(res.profile_fit, static_cast<double>(n) / static_cast<double>(src.size()));
     }
   }

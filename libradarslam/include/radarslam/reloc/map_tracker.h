@@ -38,6 +38,16 @@ struct MapTrackerParams {
   /// percentile of the ratio over the tracked scans of the train sequences (a 1 % false-alarm
   /// rate; docs/localization.md); valid [0, 1], 1 = off.
   double flat_profile_ratio = 0.975;
+  /// Re-acquisition (check (h)): when the prediction's 3 sigma along its largest xy axis exceeds
+  /// icp.inlier_distance_m (what tells two alignments apart), the registration from the
+  /// prediction is one local minimum among possibly several (after a degraded stretch along a
+  /// wall, a wrong stretch of the same wall agrees with it). The scan is then also registered from
+  /// up to this many starts on each side of the prediction along that axis, spaced by the ICP's
+  /// capture range (icp.max_correspondence_m) out to 3 sigma. The best fit is kept; other
+  /// alignments (> the inlier gate or 1 deg apart) fitting >= ambiguity_fit_ratio as well (check
+  /// (d)'s ambiguity) make it ambiguous: `degenerate`, with their spread (second moment about the
+  /// kept one) added to its covariance. 0 = off; valid [0, 10].
+  int reacquisition_starts = 2;
 };
 
 /// Overrides from min_fit_score, min_inliers, max_rms_m, max_jump_m, max_jump_deg,
@@ -60,6 +70,11 @@ struct TrackResult {
   /// `alternative`, at least ambiguity_fit_ratio as well: reported, the tracked copy kept.
   bool ambiguous = false;
   IcpResult alternative;
+  /// The prediction was wide (check (h)): the scan was also registered from other starts.
+  bool reacquisition = false;
+  /// ... and another alignment within the prediction fitted almost as well (the scan is then
+  /// `degenerate`, its covariance holding the alignments' spread).
+  bool reacquisition_ambiguous = false;
 };
 
 class MapTracker {
@@ -71,13 +86,20 @@ class MapTracker {
   /// Registers `cloud` (sensor frame, motion compensated) near `predicted` (map frame), against
   /// the keyframes within submap.max_path_m of keyframe `anchor` along the map's graph (the copy
   /// being tracked: a global fix's keyframe, then each result's `anchor`); -1 = every keyframe near.
-  TrackResult track(std::span<const RadarPoint> cloud, const mrpt::math::TPose2D& predicted,
-                    long anchor = -1);
+  /// With `predicted_cov` (the prediction's covariance) a wide prediction makes it a re-acquisition
+  /// (MapTrackerParams::reacquisition_starts).
+  TrackResult track(std::span<const RadarPoint> cloud, const mrpt::math::TPose2D& predicted, long anchor = -1,
+                    const Eigen::Matrix3d* predicted_cov = nullptr);
 
   const MapTrackerParams& params() const { return params_; }
 
  private:
   void rebuild(const mrpt::math::TPose2D& predicted, long anchor);
+  bool checksProfile() const { return params_.flat_profile_ratio < 1; }  ///< check (g) on
+  /// Check (h): registers from further starts along the prediction's widest axis; keeps the best
+  /// fit in out.icp and flags an ambiguity.
+  void reacquire(std::span<const RadarPoint> cloud, const mrpt::math::TPose2D& predicted,
+                 const Eigen::Matrix3d& predicted_cov, TrackResult& out) const;
 
   const KeyframeMap& map_;
   MapTrackerParams params_;

@@ -70,7 +70,8 @@ struct IcpParams {
   /// The fit profile along the weakest position direction: the fit score is also evaluated with the
   /// solution shifted by +-profile_shift_m along the largest-variance xy eigenvector (IcpResult::
   /// profile_fit). A cost that stays flat there (a featureless wall) is a direction the curvature
-  /// sigma^2 H^-1 cannot be trusted in, whatever its size. 0 = not evaluated; valid [0, 100]
+  /// sigma^2 H^-1 cannot be trusted in, whatever its size. Evaluated when the caller asks for it
+  /// (LocalSubmap::registerScan); 0 = never; valid [0, 100]
   double profile_shift_m = 2.0;
 };
 
@@ -114,9 +115,10 @@ class LocalSubmap {
   double centreX() const { return cx_; }
   double centreY() const { return cy_; }
 
-  /// Registers `scan` (sensor frame) starting from `initial` (sensor pose in the map frame).
+  /// Registers `scan` (sensor frame) starting from `initial` (sensor pose in the map frame); with
+  /// `fit_profile`, also the fit profile (IcpResult::profile_fit, when params.profile_shift_m > 0).
   IcpResult registerScan(std::span<const RadarPoint> scan, const mrpt::math::TPose2D& initial,
-                         const IcpParams& params) const;
+                         const IcpParams& params, bool fit_profile = false) const;
 
  private:
   struct Impl;
