@@ -174,22 +174,35 @@ std::vector<RadarPoint> scanOf(const std::vector<Eigen::Vector2d>& pts, double f
   return scan;
 }
 
-TEST(RelocTracker, AStreetThatRepeatsEveryFewMetresIsDegenerateAlongIt) {
-  // Walls with posts every 2 m (a fence, parked cars in a row): the posts constrain the position
-  // along the street locally (sigma^2 H^-1 is small and round: the eigenvalue ratio test passes),
-  // but the scan fits as well 2 m further on. The fit profile makes it `degenerate` (fused with
-  // the prediction by the localiser), with the shift's variance along the street.
+// Walls on both sides of a street and a post every `period_m`: the posts fix the position along
+// the street only to within a period.
+std::vector<Eigen::Vector2d> streetWithPosts(double period_m) {
   std::vector<Eigen::Vector2d> pts;
   for (double x = -80; x <= 80; x += 0.2) {
     pts.emplace_back(x, 6.0);
     pts.emplace_back(x, -6.0);
   }
-  for (double x = -80; x <= 80; x += 2.0)
+  for (double x = -80; x <= 80; x += period_m)
     for (double d = -0.2; d <= 0.21; d += 0.2) pts.emplace_back(x + d, 3.0), pts.emplace_back(x, 3.0 + d);
-  const KeyframeMap map = oneKeyframeMap(pts);
+  return pts;
+}
+
+// The tracker seeing the whole hand-made street (one keyframe, no copies).
+MapTrackerParams wholeStreetParams() {
   MapTrackerParams params;
   params.submap.radius_m = 200;
   params.submap.max_path_m = 0;
+  return params;
+}
+
+TEST(RelocTracker, AStreetThatRepeatsEveryFewMetresIsDegenerateAlongIt) {
+  // Walls with posts every 2 m (a fence, parked cars in a row): the posts constrain the position
+  // along the street locally (sigma^2 H^-1 is small and round: the eigenvalue ratio test passes),
+  // but the scan fits as well 2 m further on. The fit profile makes it `degenerate` (fused with
+  // the prediction by the localiser), with the shift's variance along the street.
+  const std::vector<Eigen::Vector2d> pts = streetWithPosts(2.0);
+  const KeyframeMap map = oneKeyframeMap(pts);
+  MapTrackerParams params = wholeStreetParams();
   MapTracker tracker(map, params);
   const TrackResult r = tracker.track(scanOf(pts, -50, 50), {0.3, 0.2, 0.005});
   ASSERT_TRUE(r.icp.converged);
@@ -210,29 +223,20 @@ TEST(RelocTracker, AStreetThatRepeatsEveryFewMetresIsDegenerateAlongIt) {
   EXPECT_TRUE(t.accepted) << t.reason;
 }
 
-TEST(RelocTracker, AScatteredSceneHasASteepFitProfile) {
+// 600 points scattered over 80 x 80 m: one alignment only.
+std::vector<Eigen::Vector2d> scatteredScene() {
   std::vector<Eigen::Vector2d> pts;
   for (int i = 0; i < 600; ++i) pts.emplace_back(40 * std::sin(1.3 * i), 40 * std::cos(0.7 * i + 0.2));
+  return pts;
+}
+
+TEST(RelocTracker, AScatteredSceneHasASteepFitProfile) {
+  const std::vector<Eigen::Vector2d> pts = scatteredScene();
   const KeyframeMap map = oneKeyframeMap(pts);
-  MapTrackerParams params;
-  params.submap.max_path_m = 0;
-  MapTracker tracker(map, params);
+  MapTracker tracker(map, wholeStreetParams());
   const TrackResult r = tracker.track(scanOf(pts, -100, 100), {0.2, -0.1, 0.005});
   EXPECT_TRUE(r.accepted) << r.reason;
   EXPECT_LT(r.icp.profile_fit, 0.5 * r.icp.fit_score);
-}
-
-// Walls on both sides of a street and a post every 4 m: the posts fix the position along the
-// street only to within a period.
-std::vector<Eigen::Vector2d> streetWithPostsEvery4m() {
-  std::vector<Eigen::Vector2d> pts;
-  for (double x = -80; x <= 80; x += 0.2) {
-    pts.emplace_back(x, 6.0);
-    pts.emplace_back(x, -6.0);
-  }
-  for (double x = -80; x <= 80; x += 4.0)
-    for (double d = -0.2; d <= 0.21; d += 0.2) pts.emplace_back(x + d, 3.0), pts.emplace_back(x, 3.0 + d);
-  return pts;
 }
 
 TEST(RelocTracker, AWidePredictionIsAReacquisitionThatTestsTheOtherAlignments) {
@@ -241,11 +245,9 @@ TEST(RelocTracker, AWidePredictionIsAReacquisitionThatTestsTheOtherAlignments) {
   // it (the posts lose their match halfway between). Check (h) registers from further starts
   // within the prediction, finds alignments 4 m apart fitting as well: degenerate, with their
   // spread in the covariance.
-  const std::vector<Eigen::Vector2d> pts = streetWithPostsEvery4m();
+  const std::vector<Eigen::Vector2d> pts = streetWithPosts(4.0);
   const KeyframeMap map = oneKeyframeMap(pts);
-  MapTrackerParams params;
-  params.submap.radius_m = 200;
-  params.submap.max_path_m = 0;
+  MapTrackerParams params = wholeStreetParams();
   const mrpt::math::TPose2D predicted{3.6, 0.1, 0.0};
   const Eigen::Matrix3d wide = Eigen::Vector3d(4.0, 0.01, 1e-4).asDiagonal();
   {
@@ -273,12 +275,9 @@ TEST(RelocTracker, AWidePredictionIsAReacquisitionThatTestsTheOtherAlignments) {
 }
 
 TEST(RelocTracker, AReacquisitionInADistinctSceneFindsTheOneAlignment) {
-  std::vector<Eigen::Vector2d> pts;
-  for (int i = 0; i < 600; ++i) pts.emplace_back(40 * std::sin(1.3 * i), 40 * std::cos(0.7 * i + 0.2));
+  const std::vector<Eigen::Vector2d> pts = scatteredScene();
   const KeyframeMap map = oneKeyframeMap(pts);
-  MapTrackerParams params;
-  params.submap.max_path_m = 0;
-  MapTracker tracker(map, params);
+  MapTracker tracker(map, wholeStreetParams());
   const Eigen::Matrix3d wide = Eigen::Vector3d(2.0, 1.0, 1e-4).asDiagonal();
   const TrackResult r = tracker.track(scanOf(pts, -100, 100), {0.8, -0.4, 0.005}, -1, &wide);
   EXPECT_TRUE(r.reacquisition);
