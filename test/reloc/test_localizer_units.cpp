@@ -274,6 +274,41 @@ TEST(RelocTracker, AWidePredictionIsAReacquisitionThatTestsTheOtherAlignments) {
   }
 }
 
+TEST(RelocTracker, AWideHeadingPredictionTestsTheOtherHeadings) {
+  // A round place: a circular wall 30 m away and a post every 10 deg at 20 m. Turned by 10 deg it
+  // looks the same. The prediction's heading is 9 deg off and known to +-15 deg (3 sigma, beyond
+  // the ICP's heading capture range of 3 m at the submap radius): from it the registration lands
+  // on the look-alike 10 deg away, and the xy fit profile does not see it. Heading starts find the
+  // true alignment as a rival: degenerate, with the spread in the heading variance.
+  std::vector<Eigen::Vector2d> pts;
+  for (double a = 0; a < 2 * M_PI; a += 0.01) pts.emplace_back(30 * std::cos(a), 30 * std::sin(a));
+  for (int k = 0; k < 36; ++k) {
+    const double a = k * 10 * M_PI / 180;
+    for (double d = -0.2; d <= 0.21; d += 0.2)
+      pts.emplace_back(20 * std::cos(a) + d, 20 * std::sin(a)),
+          pts.emplace_back(20 * std::cos(a), 20 * std::sin(a) + d);
+  }
+  const KeyframeMap map = oneKeyframeMap(pts);
+  MapTrackerParams params;  // submap radius 60 m: heading capture 3 m / 60 m = 2.9 deg
+  params.submap.max_path_m = 0;
+  const mrpt::math::TPose2D predicted{0.0, 0.0, 9 * M_PI / 180};
+  const double sigma_phi = 5 * M_PI / 180;
+  const Eigen::Matrix3d wide = Eigen::Vector3d(0.01, 0.01, sigma_phi * sigma_phi).asDiagonal();
+  MapTracker tracker(map, params);
+  const TrackResult r = tracker.track(scanOf(pts, -100, 100), predicted, -1, &wide);
+  EXPECT_TRUE(r.reacquisition);
+  EXPECT_TRUE(r.reacquisition_ambiguous);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_TRUE(r.degenerate) << r.reason;
+  EXPECT_GT(r.icp.covariance(2, 2), 0.5 * std::pow(10 * M_PI / 180, 2) * 0.9) << "the rivals' heading spread";
+  // A narrow heading prediction at the same place is ordinary tracking, trusted 10 deg off.
+  const Eigen::Matrix3d narrow = Eigen::Vector3d(0.01, 0.01, 1e-5).asDiagonal();
+  const TrackResult t = tracker.track(scanOf(pts, -100, 100), predicted, -1, &narrow);
+  EXPECT_FALSE(t.reacquisition);
+  EXPECT_TRUE(t.accepted) << t.reason;
+  EXPECT_NEAR(std::abs(t.icp.pose.phi) * 180 / M_PI, 10, 0.5);
+}
+
 TEST(RelocTracker, AReacquisitionInADistinctSceneFindsTheOneAlignment) {
   const std::vector<Eigen::Vector2d> pts = scatteredScene();
   const KeyframeMap map = oneKeyframeMap(pts);

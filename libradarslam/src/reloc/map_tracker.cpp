@@ -67,22 +67,36 @@ void MapTracker::rebuild(const mrpt::math::TPose2D& predicted, long anchor) {
 
 void MapTracker::reacquire(std::span<const RadarPoint> cloud, const mrpt::math::TPose2D& predicted,
                            const Eigen::Matrix3d& predicted_cov, TrackResult& out) const {
-  // Wide = 3 sigma along the largest xy axis beyond the inlier gate, what tells two alignments
-  // apart (differentAlignments).
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(predicted_cov.topLeftCorner<2, 2>());
+  // Wide = 3 sigma beyond what tells two alignments apart along the largest xy axis (the inlier
+  // gate, differentAlignments), or in heading beyond the ICP's capture range (its first gate at the
+  // submap's radius; an ordinary prediction's heading 3 sigma, ~1.2 deg, is already above 1 deg,
+  // and the ICP's own iterations search its capture range).
   const double reach = 3 * std::sqrt(std::max(0.0, es.eigenvalues()(1)));
-  if (params_.reacquisition_starts <= 0 || !(reach > params_.icp.inlier_distance_m)) return;
+  const double reach_rad = 3 * std::sqrt(std::max(0.0, predicted_cov(2, 2)));
+  const double capture_rad = params_.icp.max_correspondence_m / params_.submap.radius_m;
+  const bool wide_xy = reach > params_.icp.inlier_distance_m;
+  const bool wide_phi = reach_rad > capture_rad;
+  if (params_.reacquisition_starts <= 0 || (!wide_xy && !wide_phi)) return;
   out.reacquisition = true;
-  // Starts spaced by the ICP's capture range (its first gate), out to 3 sigma.
-  const Eigen::Vector2d axis = es.eigenvectors().col(1).normalized();
-  const double step = std::min(reach, params_.icp.max_correspondence_m);
-  const int per_side =
-      std::min(params_.reacquisition_starts, static_cast<int>(std::ceil(reach / step - 1e-9)));
   std::vector<mrpt::math::TPose2D> from;
-  for (int k = 1; k <= per_side; ++k)
-    for (const double sign : {-1.0, 1.0})
-      from.push_back({predicted.x + sign * k * step * axis.x(), predicted.y + sign * k * step * axis.y(),
-                      predicted.phi});
+  if (wide_xy) {
+    const Eigen::Vector2d axis = es.eigenvectors().col(1).normalized();
+    const double step = std::min(reach, params_.icp.max_correspondence_m);
+    const int per_side =
+        std::min(params_.reacquisition_starts, static_cast<int>(std::ceil(reach / step - 1e-9)));
+    for (int k = 1; k <= per_side; ++k)
+      for (const double sign : {-1.0, 1.0})
+        from.push_back({predicted.x + sign * k * step * axis.x(), predicted.y + sign * k * step * axis.y(),
+                        predicted.phi});
+  }
+  if (wide_phi) {
+    const int per_side =
+        std::min(params_.reacquisition_starts, static_cast<int>(std::ceil(reach_rad / capture_rad - 1e-9)));
+    for (int k = 1; k <= per_side; ++k)
+      for (const double sign : {-1.0, 1.0})
+        from.push_back({predicted.x, predicted.y, predicted.phi + sign * k * capture_rad});
+  }
   std::vector<IcpResult> found{out.icp};
   for (const auto& start : from) {
     IcpResult r = submap_->registerScan(cloud, start, params_.icp, checksProfile());

@@ -39,14 +39,16 @@ struct MapTrackerParams {
   /// rate; docs/localization.md); valid [0, 1], 1 = off.
   double flat_profile_ratio = 0.975;
   /// Re-acquisition (check (h)): when the prediction's 3 sigma along its largest xy axis exceeds
-  /// icp.inlier_distance_m (what tells two alignments apart), the registration from the
-  /// prediction is one local minimum among possibly several (after a degraded stretch along a
-  /// wall, a wrong stretch of the same wall agrees with it). The scan is then also registered from
-  /// up to this many starts on each side of the prediction along that axis, spaced by the ICP's
-  /// capture range (icp.max_correspondence_m) out to 3 sigma. The best fit is kept; other
-  /// alignments (> the inlier gate or 1 deg apart) fitting >= ambiguity_fit_ratio as well (check
-  /// (d)'s ambiguity) make it ambiguous: `degenerate`, with their spread (second moment about the
-  /// kept one) added to its covariance. 0 = off; valid [0, 10].
+  /// icp.inlier_distance_m (what tells two alignments apart), or its heading 3 sigma exceeds the
+  /// ICP's heading capture range (icp.max_correspondence_m over submap.radius_m), the registration
+  /// from the prediction is one local minimum among possibly several (after a degraded stretch
+  /// along a wall, a wrong stretch of the same wall agrees with it). The scan is then also
+  /// registered from up to this many starts on each side of the prediction along each wide axis,
+  /// spaced by the ICP's capture range (icp.max_correspondence_m; in heading the capture range
+  /// above) out to 3 sigma. The best fit is kept; other alignments (> the inlier gate or 1 deg
+  /// apart) fitting >= ambiguity_fit_ratio as well (check (d)'s ambiguity) make it ambiguous:
+  /// `degenerate`, with their spread (second moment about the kept one) added to its covariance.
+  /// 0 = off; valid [0, 10].
   int reacquisition_starts = 2;
 };
 
