@@ -79,24 +79,24 @@ void MapTracker::reacquire(std::span<const RadarPoint> cloud, const mrpt::math::
   const bool wide_phi = reach_rad > capture_rad;
   if (params_.reacquisition_starts <= 0 || (!wide_xy && !wide_phi)) return;
   out.reacquisition = true;
+  // Starts k = 1..per_side steps of `unit` (a pose offset per unit of reach) on each side, spaced
+  // by the capture range, out to the reach.
   std::vector<mrpt::math::TPose2D> from;
+  auto addStarts = [&](double reach_along, double capture, const Eigen::Vector3d& unit) {
+    const double step = std::min(reach_along, capture);
+    const int per_side =
+        std::min(params_.reacquisition_starts, static_cast<int>(std::ceil(reach_along / step - 1e-9)));
+    for (int k = 1; k <= per_side; ++k)
+      for (const double sign : {-1.0, 1.0}) {
+        const Eigen::Vector3d d = sign * k * step * unit;
+        from.push_back({predicted.x + d.x(), predicted.y + d.y(), predicted.phi + d.z()});
+      }
+  };
   if (wide_xy) {
     const Eigen::Vector2d axis = es.eigenvectors().col(1).normalized();
-    const double step = std::min(reach, params_.icp.max_correspondence_m);
-    const int per_side =
-        std::min(params_.reacquisition_starts, static_cast<int>(std::ceil(reach / step - 1e-9)));
-    for (int k = 1; k <= per_side; ++k)
-      for (const double sign : {-1.0, 1.0})
-        from.push_back({predicted.x + sign * k * step * axis.x(), predicted.y + sign * k * step * axis.y(),
-                        predicted.phi});
+    addStarts(reach, params_.icp.max_correspondence_m, Eigen::Vector3d(axis.x(), axis.y(), 0));
   }
-  if (wide_phi) {
-    const int per_side =
-        std::min(params_.reacquisition_starts, static_cast<int>(std::ceil(reach_rad / capture_rad - 1e-9)));
-    for (int k = 1; k <= per_side; ++k)
-      for (const double sign : {-1.0, 1.0})
-        from.push_back({predicted.x, predicted.y, predicted.phi + sign * k * capture_rad});
-  }
+  if (wide_phi) addStarts(reach_rad, capture_rad, Eigen::Vector3d::UnitZ());
   std::vector<IcpResult> found{out.icp};
   for (const auto& start : from) {
     IcpResult r = submap_->registerScan(cloud, start, params_.icp, checksProfile());
