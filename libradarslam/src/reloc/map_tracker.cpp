@@ -65,8 +65,9 @@ void MapTracker::rebuild(const mrpt::math::TPose2D& predicted, long anchor) {
   if (other.keyframes() > 0) other_ = std::move(other);
 }
 
-void MapTracker::reacquire(std::span<const RadarPoint> cloud, const mrpt::math::TPose2D& predicted,
-                           const Eigen::Matrix3d& predicted_cov, TrackResult& out) const {
+Eigen::Matrix3d MapTracker::reacquire(const std::vector<Eigen::Vector2d>& thinned,
+                                      const mrpt::math::TPose2D& predicted,
+                                      const Eigen::Matrix3d& predicted_cov, TrackResult& out) const {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(predicted_cov.topLeftCorner<2, 2>());
   // Wide = 3 sigma beyond what tells two alignments apart along the largest xy axis (the inlier
   // gate, differentAlignments), or in heading beyond the ICP's capture range (its first gate at the
@@ -77,7 +78,8 @@ void MapTracker::reacquire(std::span<const RadarPoint> cloud, const mrpt::math::
   const double capture_rad = params_.icp.max_correspondence_m / params_.submap.radius_m;
   const bool wide_xy = reach > params_.icp.inlier_distance_m;
   const bool wide_phi = reach_rad > capture_rad;
-  if (params_.reacquisition_starts <= 0 || (!wide_xy && !wide_phi)) return;
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+  if (params_.reacquisition_starts <= 0 || (!wide_xy && !wide_phi)) return spread;
   out.reacquisition = true;
   // Starts k = 1..per_side steps of `unit` (a pose offset per unit of reach) on each side, spaced
   // by the capture range, out to the reach.
@@ -99,7 +101,7 @@ void MapTracker::reacquire(std::span<const RadarPoint> cloud, const mrpt::math::
   if (wide_phi) addStarts(reach_rad, capture_rad, Eigen::Vector3d::UnitZ());
   std::vector<IcpResult> found{out.icp};
   for (const auto& start : from) {
-    IcpResult r = submap_->registerScan(cloud, start, params_.icp, checksProfile());
+    IcpResult r = submap_->registerThinned(thinned, start, params_.icp);
     if (r.inliers >= params_.min_inliers) found.push_back(std::move(r));
   }
   // The first best wins a tie: the registration from the prediction itself.
@@ -107,7 +109,6 @@ void MapTracker::reacquire(std::span<const RadarPoint> cloud, const mrpt::math::
     return a.fit_score < b.fit_score;
   });
   const IcpResult kept = *best;
-  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
   int rivals = 0;
   for (const IcpResult& r : found) {
     if (!differentAlignments(r, kept, params_.icp) ||
@@ -119,10 +120,9 @@ void MapTracker::reacquire(std::span<const RadarPoint> cloud, const mrpt::math::
     ++rivals;
   }
   out.icp = kept;
-  if (rivals > 0) {
-    out.reacquisition_ambiguous = true;
-    out.icp.covariance += spread / static_cast<double>(rivals + 1);  // second moment, the kept one at 0
-  }
+  out.reacquisition_ambiguous = rivals > 0;
+  return rivals > 0 ? Eigen::Matrix3d(spread / static_cast<double>(rivals + 1))  // second moment, kept at 0
+                    : Eigen::Matrix3d::Zero();
 }
 
 TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::math::TPose2D& predicted,
@@ -147,12 +147,16 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
     out.reason = "no map keyframe near the predicted pose";
     return out;
   }
-  out.icp = submap_->registerScan(cloud, predicted, params_.icp, checksProfile());
-  if (predicted_cov) reacquire(cloud, predicted, *predicted_cov, out);
+  const std::vector<Eigen::Vector2d> thinned = LocalSubmap::thinScan(cloud, params_.icp);
+  out.icp = submap_->registerThinned(thinned, predicted, params_.icp);
+  const Eigen::Matrix3d spread =
+      predicted_cov ? reacquire(thinned, predicted, *predicted_cov, out) : Eigen::Matrix3d::Zero();
+  if (checksProfile()) submap_->fitProfile(thinned, params_.icp, out.icp);  // of the kept alignment
+  out.icp.covariance += spread;
   const IcpResult& r = out.icp;
   out.anchor = nearestKeyframe(map_, submap_->keyframeIndices(), r.pose.x, r.pose.y);
   if (other_) {  // a second copy of this place: does it explain the scan elsewhere as well?
-    out.alternative = other_->registerScan(cloud, predicted, params_.icp);
+    out.alternative = other_->registerThinned(thinned, predicted, params_.icp);
     const IcpResult& a = out.alternative;
     out.ambiguous = a.inliers >= params_.min_inliers &&
                     a.fit_score >= params_.ambiguity_fit_ratio * r.fit_score &&

@@ -75,8 +75,11 @@ std::vector<Vec2> voxelCentroids(const std::vector<Vec2>& pts, double voxel) {
   return sum;
 }
 
-/// The strongest point per voxel (sensor frame), then an even stride down to max_points.
-std::vector<Vec2> thinScan(std::span<const RadarPoint> c, double voxel, std::size_t max_points) {
+}  // namespace
+
+std::vector<Vec2> LocalSubmap::thinScan(std::span<const RadarPoint> c, const IcpParams& params) {
+  const double voxel = params.scan_voxel_m;
+  const std::size_t max_points = params.max_scan_points;
   std::vector<Vec2> out;
   if (voxel > 0) {
     std::unordered_map<std::int64_t, std::size_t> best;
@@ -105,8 +108,6 @@ std::vector<Vec2> thinScan(std::span<const RadarPoint> c, double voxel, std::siz
   }
   return out;
 }
-
-}  // namespace
 
 struct LocalSubmap::Impl {
   PointIndex2D index;
@@ -184,9 +185,16 @@ LocalSubmap LocalSubmap::fromPoints(std::vector<Eigen::Vector2d> map_points, dou
 
 IcpResult LocalSubmap::registerScan(std::span<const RadarPoint> scan, const mrpt::math::TPose2D& initial,
                                     const IcpParams& params, bool fit_profile) const {
+  const std::vector<Vec2> thinned = thinScan(scan, params);
+  IcpResult res = registerThinned(thinned, initial, params);
+  if (fit_profile) fitProfile(thinned, params, res);
+  return res;
+}
+
+IcpResult LocalSubmap::registerThinned(const std::vector<Vec2>& src, const mrpt::math::TPose2D& initial,
+                                       const IcpParams& params) const {
   IcpResult res;
   res.pose = initial;
-  const std::vector<Vec2> src = thinScan(scan, params.scan_voxel_m, params.max_scan_points);
   res.scan_points = src.size();
   if (!impl_ || impl_->index.size() < 3 || src.size() < 3) return res;
 
@@ -270,23 +278,27 @@ IcpResult LocalSubmap::registerScan(std::span<const RadarPoint> scan, const mrpt
   } else {
     res.covariance = Eigen::Matrix3d::Identity() * 1e6;
   }
-  if (fit_profile && params.profile_shift_m > 0 && inliers >= 3) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> exy(res.covariance.topLeftCorner<2, 2>());
-    res.weak_direction = exy.eigenvectors().col(1).normalized();
-    const double c = std::cos(th), s = std::sin(th),
-                 gate2 = params.inlier_distance_m * params.inlier_distance_m;
-    std::vector<Vec2> placed;  // the scan at the solution
-    placed.reserve(src.size());
-    for (const Vec2& p : src) placed.emplace_back(c * p.x() - s * p.y() + x, s * p.x() + c * p.y() + y);
-    for (const double sign : {-1.0, 1.0}) {
-      const Vec2 shift = sign * params.profile_shift_m * res.weak_direction;
-      std::size_t n = 0;
-      for (const Vec2& q : placed)
-        if (impl_->index.nearest(q + shift).first <= gate2) ++n;
-      res.profile_fit = std::max(res.profile_fit, static_cast<double>(n) / static_cast<double>(src.size()));
-    }
-  }
   return res;
+}
+
+void LocalSubmap::fitProfile(const std::vector<Vec2>& src, const IcpParams& params, IcpResult& res) const {
+  if (params.profile_shift_m <= 0 || res.inliers < 3 || !impl_ || src.empty()) return;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> exy(res.covariance.topLeftCorner<2, 2>());
+  res.weak_direction = exy.eigenvectors().col(1).normalized();
+  res.profile_fit = 0;
+  const double c = std::cos(res.pose.phi), s = std::sin(res.pose.phi),
+               gate2 = params.inlier_distance_m * params.inlier_distance_m;
+  std::vector<Vec2> placed;  // the scan at the solution
+  placed.reserve(src.size());
+  for (const Vec2& p : src)
+    placed.emplace_back(c * p.x() - s * p.y() + res.pose.x, s * p.x() + c * p.y() + res.pose.y);
+  for (const double sign : {-1.0, 1.0}) {
+    const Vec2 shift = sign * params.profile_shift_m * res.weak_direction;
+    std::size_t n = 0;
+    for (const Vec2& q : placed)
+      if (impl_->index.nearest(q + shift).first <= gate2) ++n;
+    res.profile_fit = std::max(res.profile_fit, static_cast<double>(n) / static_cast<double>(src.size()));
+  }
 }
 
 }  // namespace radarslam

@@ -8,6 +8,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "radarslam/reloc/map_connectivity.h"
 #include "radarslam/reloc/submap_icp.h"
@@ -98,10 +99,11 @@ class MapTracker {
  private:
   void rebuild(const mrpt::math::TPose2D& predicted, long anchor);
   bool checksProfile() const { return params_.flat_profile_ratio < 1; }  ///< check (g) on
-  /// Check (h): registers from further starts along the prediction's widest axis; keeps the best
-  /// fit in out.icp and flags an ambiguity.
-  void reacquire(std::span<const RadarPoint> cloud, const mrpt::math::TPose2D& predicted,
-                 const Eigen::Matrix3d& predicted_cov, TrackResult& out) const;
+  /// Check (h): registers the thinned scan from further starts along the prediction's wide axes;
+  /// keeps the best fit in out.icp, flags an ambiguity and returns the rival alignments' spread
+  /// (zero when there are none), which the caller adds to the covariance.
+  Eigen::Matrix3d reacquire(const std::vector<Eigen::Vector2d>& thinned, const mrpt::math::TPose2D& predicted,
+                            const Eigen::Matrix3d& predicted_cov, TrackResult& out) const;
 
   const KeyframeMap& map_;
   MapTrackerParams params_;

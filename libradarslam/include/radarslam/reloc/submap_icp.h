@@ -115,10 +115,21 @@ class LocalSubmap {
   double centreX() const { return cx_; }
   double centreY() const { return cy_; }
 
+  /// A scan's peak cloud (sensor frame) as registration uses it: the strongest point per
+  /// params.scan_voxel_m voxel, then an even stride down to params.max_scan_points.
+  static std::vector<Eigen::Vector2d> thinScan(std::span<const RadarPoint> scan, const IcpParams& params);
+
   /// Registers `scan` (sensor frame) starting from `initial` (sensor pose in the map frame); with
   /// `fit_profile`, also the fit profile (IcpResult::profile_fit, when params.profile_shift_m > 0).
   IcpResult registerScan(std::span<const RadarPoint> scan, const mrpt::math::TPose2D& initial,
                          const IcpParams& params, bool fit_profile = false) const;
+  /// The same for a scan already thinned by thinScan (several starts register it once thinned).
+  IcpResult registerThinned(const std::vector<Eigen::Vector2d>& thinned, const mrpt::math::TPose2D& initial,
+                            const IcpParams& params) const;
+  /// Fills result.profile_fit and result.weak_direction for the registration `result` of
+  /// `thinned` (nothing when params.profile_shift_m is 0 or it has fewer than 3 inliers).
+  void fitProfile(const std::vector<Eigen::Vector2d>& thinned, const IcpParams& params,
+                  IcpResult& result) const;
 
  private:
   struct Impl;
