@@ -221,6 +221,16 @@ TEST(RelocTracker, AStreetThatRepeatsEveryFewMetresIsDegenerateAlongIt) {
   MapTracker trusting(map, params);
   const TrackResult t = trusting.track(scanOf(pts, -50, 50), {0.3, 0.2, 0.005});
   EXPECT_TRUE(t.accepted) << t.reason;
+
+  // Whichever test makes the scan degenerate first (here the position sigma test, made strict),
+  // the flat direction still gets the shift's variance.
+  params.flat_profile_ratio = MapTrackerParams{}.flat_profile_ratio;
+  params.max_position_sigma_m = 1e-3;
+  MapTracker strict(map, params);
+  const TrackResult s = strict.track(scanOf(pts, -50, 50), {0.3, 0.2, 0.005});
+  EXPECT_TRUE(s.degenerate) << s.reason;
+  EXPECT_NE(s.reason.find("flat along its weakest direction"), std::string::npos) << s.reason;
+  EXPECT_GT(s.icp.covariance(0, 0), 4.0);
 }
 
 // 600 points scattered over 80 x 80 m: one alignment only.

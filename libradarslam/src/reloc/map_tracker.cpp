@@ -166,7 +166,15 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
   const double jump_deg = std::abs(std::remainder(r.pose.phi - predicted.phi, 2 * M_PI)) * 180.0 / M_PI;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(r.covariance.topLeftCorner<2, 2>());
   const double sigma_xy = std::sqrt(std::max(0.0, es.eigenvalues()(1)));
-  char buf[160];
+  // Check (g): the cost is flat along the weakest direction, so the position along it is known only
+  // to about the shift, whichever check makes the scan degenerate.
+  const bool flat =
+      checksProfile() && r.profile_fit > 0 && r.profile_fit >= params_.flat_profile_ratio * r.fit_score;
+  auto inflateAlongTheFlatDirection = [&] {
+    const double shift2 = params_.icp.profile_shift_m * params_.icp.profile_shift_m;
+    out.icp.covariance.topLeftCorner<2, 2>() += shift2 * r.weak_direction * r.weak_direction.transpose();
+  };
+  char buf[200];
   if (r.inliers < params_.min_inliers) {
     std::snprintf(buf, sizeof buf, "%zu inliers < %zu", r.inliers, params_.min_inliers);
   } else if (r.fit_score < params_.min_fit_score) {
@@ -177,18 +185,20 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
     std::snprintf(buf, sizeof buf, "jump %.2f m / %.1f deg from the prediction", jump, jump_deg);
   } else if (out.reacquisition_ambiguous) {
     std::snprintf(buf, sizeof buf,
-                  "re-acquisition: another alignment within the prediction's 3 sigma fits as well");
+                  "re-acquisition: another alignment within the prediction's 3 sigma fits as well%s",
+                  flat ? "; flat along its weakest direction" : "");
     out.degenerate = true;
+    if (flat) inflateAlongTheFlatDirection();
   } else if (!(sigma_xy <= params_.max_position_sigma_m)) {
-    std::snprintf(buf, sizeof buf, "position sigma %.2f m > %.2f m", sigma_xy, params_.max_position_sigma_m);
+    std::snprintf(buf, sizeof buf, "position sigma %.2f m > %.2f m%s", sigma_xy, params_.max_position_sigma_m,
+                  flat ? "; flat along its weakest direction" : "");
     out.degenerate = true;
-  } else if (checksProfile() && r.profile_fit > 0 &&
-             r.profile_fit >= params_.flat_profile_ratio * r.fit_score) {
+    if (flat) inflateAlongTheFlatDirection();
+  } else if (flat) {
     std::snprintf(buf, sizeof buf,
                   "flat along its weakest direction: fit %.2f shifted %.1f m, %.2f at the solution",
                   r.profile_fit, params_.icp.profile_shift_m, r.fit_score);
-    const double shift2 = params_.icp.profile_shift_m * params_.icp.profile_shift_m;
-    out.icp.covariance.topLeftCorner<2, 2>() += shift2 * r.weak_direction * r.weak_direction.transpose();
+    inflateAlongTheFlatDirection();
     out.degenerate = true;
   } else {
     out.accepted = true;
