@@ -43,6 +43,7 @@ TEST(LoopVerifier, AcceptsRevisitsInBothDirectionsWithAccuratePose) {
     expectPoseNear(v.relative_pose, relative(ax, ay, ayaw, ax + c.dx, ay + c.dy, ayaw + c.dyaw), 0.15, 0.5);
     EXPECT_GT(v.inlier_ratio, 0.5);
     EXPECT_LT(v.ambiguity_ratio, 0.7);
+    EXPECT_TRUE(v.rivals.empty()) << v.rivals.size() << " rivals of a unique place";
     EXPECT_TRUE(v.information.isApprox(v.information.transpose()));
     EXPECT_EQ(Eigen::LLT<Eigen::Matrix3d>(v.information).info(), Eigen::Success);
   }
@@ -77,6 +78,12 @@ TEST(LoopVerifier, AmbiguousCorridorIsNotAcceptedAsTheWrongPlace) {
   // At the true place it is just as ambiguous: rejecting is the only safe answer.
   const auto v = verifyLoop(observe(world, 1.0, 0.5, 0.05, 3), observe(world, 0, 0, 0, 4));
   EXPECT_FALSE(v.accepted);
+  // The rivals say where else it fits: whole facade periods along the street.
+  bool period = false;
+  for (const auto& r : v.rivals)
+    period = period || (std::abs(r.x) > 10 && std::abs(std::remainder(r.x, 12.0)) < 1.5 &&
+                        std::abs(r.y) < 1.5 && std::abs(r.phi) < 5 * M_PI / 180);
+  EXPECT_TRUE(period) << v.rivals.size() << " rivals, none a facade period along the street";
 }
 
 TEST(LoopVerifier, RejectsTinyCloudsAndDeterministic) {

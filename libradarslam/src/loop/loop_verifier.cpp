@@ -54,6 +54,10 @@ struct Pose {
     const double c = std::cos(th), s = std::sin(th);
     return {c * p.x() - s * p.y() + x, s * p.x() + c * p.y() + y};
   }
+  Vec2 inverseApply(const Vec2& p) const {
+    const double c = std::cos(th), s = std::sin(th), dx = p.x() - x, dy = p.y() - y;
+    return {c * dx + s * dy, -s * dx + c * dy};
+  }
 };
 
 double angleDiff(double a, double b) { return std::abs(std::remainder(a - b, 2 * M_PI)); }
@@ -271,6 +275,14 @@ LoopVerification verifyLoop(std::span<const RadarPoint> query, std::span<const R
   for (std::size_t i = 1; i < picked.size(); ++i)
     if (!near(picked[i].pose, best.pose, params)) second = std::max(second, picked[i].score);
   out.ambiguity_ratio = best.score > 0 ? static_cast<double>(second) / static_cast<double>(best.score) : 1.0;
+  for (std::size_t i = 1; i < picked.size(); ++i) {  // what makes it ambiguous, relative to the best
+    const Pose& r = picked[i].pose;
+    if (near(r, best.pose, params) ||
+        static_cast<double>(picked[i].score) <= params.max_ambiguity_ratio * static_cast<double>(best.score))
+      continue;
+    const Vec2 d = best.pose.inverseApply(Vec2(r.x, r.y));
+    out.rivals.push_back({d.x(), d.y(), std::remainder(r.th - best.pose.th, 2 * M_PI)});
+  }
 
   // 3. CICP refinement on the full clouds (the query aligned onto the candidate).
   const mrpt::maps::CSimplePointsMap cmap = toMap(candidate), qmap = toMap(query);

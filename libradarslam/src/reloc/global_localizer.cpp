@@ -86,11 +86,17 @@ GlobalFix GlobalLocalizer::localize(std::span<const RadarPoint> cloud) const {
       const auto& cand = retrieved[r];
       const LoopVerification v = verifyLoop(cloud, clouds_[cand.keyframe], params_.verifier);
       ++best.verified;
+      double rival_m = 0, rival_deg = 0;
+      for (const auto& rival : v.rivals) {
+        rival_m = std::max(rival_m, std::hypot(rival.x, rival.y));
+        rival_deg = std::max(rival_deg, std::abs(rival.phi) * 180 / M_PI);
+      }
       logger().logFmt(mrpt::system::LVL_DEBUG,
-                      "global: keyframe %zu distance %.3f: %s, inliers %zu ratio %.2f ambiguity %.2f",
+                      "global: keyframe %zu distance %.3f: %s, inliers %zu ratio %.2f ambiguity %.2f (%zu "
+                      "rivals, up to %.1f m / %.1f deg away)",
                       cand.keyframe, static_cast<double>(cand.distance),
                       v.accepted ? "accepted" : v.reason.c_str(), v.inliers, v.inlier_ratio,
-                      v.ambiguity_ratio);
+                      v.ambiguity_ratio, v.rivals.size(), rival_m, rival_deg);
       if (!v.accepted) continue;
       if (!best.found || v.inliers > best.verification.inliers) {
         best.found = true;

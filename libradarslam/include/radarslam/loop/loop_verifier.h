@@ -24,6 +24,7 @@
 
 #include <span>
 #include <string>
+#include <vector>
 
 #include "radarslam/loop/alignment_information.h"
 #include "radarslam/radar/peak_cloud.h"
@@ -66,6 +67,10 @@ struct LoopVerification {
   std::size_t inliers = 0;
   double rms_m = 0;
   double ambiguity_ratio = 1;  ///< second-best / best consensus (lower = more unique)
+  /// The hypotheses far from the best (beyond the suppression distance or angle) scoring more than
+  /// max_ambiguity_ratio of it, each as the pose offset best^-1 (+) rival (in the query's frame at the
+  /// best alignment): where else the query fits almost as well. Empty when the place is unique.
+  std::vector<mrpt::math::TPose2D> rivals;
   int inlier_sectors = 0;
 };
 
