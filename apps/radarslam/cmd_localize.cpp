@@ -299,7 +299,8 @@ int runLocalize(int argc, char** argv) {
   err_csv << "# stamp_s scan status position_error_m heading_error_deg fit_score sigma_x_m sigma_y_m "
              "sigma_phi_deg map_position_error_m map_heading_error_deg\n";
   std::size_t done = 0, localised = 0, fixes = 0, far_off = 0, skipped = 0;
-  long first_fix = -1;
+  std::size_t degraded_fixes = 0;  // fixes whose refinement was degenerate (localization.degraded_fixes)
+  long first_fix = -1, first_trusted = -1;
   LocalizationTiming total;
   const auto t0 = Clock::now();
   const std::clock_t cpu0 = std::clock();
@@ -338,7 +339,11 @@ int runLocalize(int argc, char** argv) {
       if (r.keyframe >= 0) boreas << boreasRow(map, r);
       ++localised;
       fixes += r.status == LocalizationStatus::GlobalFix;
+      degraded_fixes += r.check == "degenerate_fix";
       if (first_fix < 0) first_fix = static_cast<long>(f.index - first);
+      if (first_trusted < 0 &&
+          (r.status == LocalizationStatus::Tracking || r.status == LocalizationStatus::GlobalFix))
+        first_trusted = static_cast<long>(f.index - first);
       poses.push_back({r.stamp, r.pose});
       if (dds) dds->publishPose(r.stamp, r.pose, r.covariance);  // just after its status
       fits.push_back(r.fit_score);
@@ -384,8 +389,12 @@ int runLocalize(int argc, char** argv) {
   std::printf("localize summary\n");
   std::printf("  scans          %zu processed, %zu localised (%.1f %%), %zu skipped\n", done, localised,
               100.0 * localised / n, skipped);
-  std::printf("  global fixes   %zu (relocalisations after the first: %zu), first fix at scan %ld\n", fixes,
-              fixes > 0 ? fixes - 1 : 0, first_fix);
+  std::printf(
+      "  global fixes   %zu + %zu degraded (relocalisations after the first: %zu), first fix at scan %ld, "
+      "first "
+      "trusted pose at scan %ld\n",
+      fixes, degraded_fixes, fixes + degraded_fixes > 0 ? fixes + degraded_fixes - 1 : 0, first_fix,
+      first_trusted);
   std::printf("  median fit     %.3f (inlier ratio of the localised scans)\n", median(fits));
   std::printf(
       "  speed          %.1f scans/s (%.1f ms/scan: odometry %.1f, cloud %.1f, tracking %.1f, global %.1f); "
@@ -403,7 +412,7 @@ int runLocalize(int argc, char** argv) {
   if (gt) {
     std::ostringstream s;
     s << "  truth          " << truth->how << "\n";
-    char buf[256];
+    char buf[384];
     std::snprintf(
         buf, sizeof buf,
         "  vs ground truth  %zu localised scans with ground truth: position error median %.3f m, max "
@@ -436,9 +445,10 @@ int runLocalize(int argc, char** argv) {
       fs::create_directories(eval_dir);
       writeTextAtomically(eval_dir / "errors.csv", err_csv.str());
       std::snprintf(buf, sizeof buf,
-                    "scans %zu\nlocalised %zu\nlocalised_percent %.2f\nglobal_fixes %zu\nfirst_fix_scan %ld\n"
-                    "median_fit %.4f\nscans_per_s %.2f\n",
-                    done, localised, 100.0 * localised / n, fixes, first_fix, median(fits), n / elapsed);
+                    "scans %zu\nlocalised %zu\nlocalised_percent %.2f\nglobal_fixes %zu\ndegraded_fixes %zu\n"
+                    "first_fix_scan %ld\nfirst_trusted_scan %ld\nmedian_fit %.4f\nscans_per_s %.2f\n",
+                    done, localised, 100.0 * localised / n, fixes, degraded_fixes, first_fix, first_trusted,
+                    median(fits), n / elapsed);
       writeTextAtomically(eval_dir / "summary.txt", std::string(buf).append(s.str()));
       // The truth in the map frame: GT of `radarslam eval --localization FILE.csv E/truth_map.tum`.
       writeTumTrajectory(eval_dir / "truth_map.tum", truth->truth);

@@ -263,5 +263,57 @@ TEST_F(LocalizeIntegrity, MapWithTheSameStreetTwiceIsTrackedOnOneCopyAndReported
   EXPECT_GE(ambiguous, 10u) << "the second copy was never reported";
 }
 
+/// Where every registration is flat along its weakest direction (here forced: tracker.
+/// flat_profile_ratio 0 makes any fit profile flat), a verified global fix refines only to a
+/// `degenerate` registration. localization.degraded_fixes reports it `degraded` (check
+/// `degenerate_fix`) with the refinement's inflated covariance and tracks on from it; without it
+/// (RADARSLAM_TEST_NO_DEGRADED_FIXES=1) every scan stays `lost`. Nothing may be trusted, and the
+/// degraded poses must lie within their own 3 sigma.
+TEST_F(LocalizeIntegrity, AFixInAFlatPlaceIsReportedDegradedAndTrackedOn) {
+  const fs::path d = tmp_->path();
+  if (!fs::exists(d / "map")) {
+    ASSERT_TRUE(runs("map-synth '" + t1_->string() + "' -o '" + (d / "map").string() + "'", d));
+  }
+  const fs::path config = d / "flat.yaml";
+  {
+    std::string loc = slurp(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "localization.yaml");
+    auto set = [&loc](const std::string& key, const std::string& value) {
+      const auto at = loc.find(key + ": ");
+      ASSERT_NE(at, std::string::npos) << key;
+      loc.replace(at, loc.find_first_of(" \n", at + key.size() + 2) - at, key + ": " + value);
+    };
+    set("flat_profile_ratio", "0.0");
+    set("degraded_fixes", std::getenv("RADARSLAM_TEST_NO_DEGRADED_FIXES") ? "false" : "true");
+    std::ofstream(config) << slurp(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml") << loc;
+  }
+  std::vector<std::vector<std::string>> errors, side;
+  localize(d / "map", *t2_, "flat", kScans, errors, side, config.string());
+  EXPECT_TRUE(checkTrusted(errors).empty()) << "a flat registration was trusted";
+  // side: stamp scan status localised x y phi cov_xx cov_xy cov_xphi cov_yy ... check
+  long first = -1;
+  std::size_t localised = 0, within = 0;
+  for (std::size_t k = 0; k < side.size(); ++k) {
+    if (side[k][3] != "1") continue;
+    if (first < 0) {
+      first = static_cast<long>(k);
+      EXPECT_EQ(side[k][2], "degraded");
+      EXPECT_EQ(side[k].back(), "degenerate_fix");
+    }
+    ++localised;
+  }
+  for (const auto& r : errors) {
+    if (r[2] != "degraded") continue;
+    // The position error against 3 sigma of the covariance's largest axis (side file of the same scan).
+    const auto& s = side.at(std::stoul(r[1]));
+    const double xx = std::stod(s[7]), xy = std::stod(s[8]), yy = std::stod(s[10]);
+    const double largest = 0.5 * (xx + yy) + std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
+    within += std::stod(r[3]) <= 3 * std::sqrt(largest);
+  }
+  ASSERT_GE(first, 0) << "no scan localised: a degenerate fix was refused";
+  EXPECT_LE(first, 2) << "first fix later than the third scan";
+  EXPECT_GE(localised, kScans * 9 / 10);
+  EXPECT_GE(within, localised * 95 / 100) << "degraded poses outside their own 3 sigma";
+}
+
 }  // namespace
 }  // namespace radarslam

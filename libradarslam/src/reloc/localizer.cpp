@@ -28,6 +28,7 @@ void loadParams(const YamlParams& yaml, LocalizerParams& p) {
   yaml.get("confirm_angle_deg", p.confirm_angle_deg, Range::above(0, 180));
   yaml.get("odometry_adaptive_radius", p.odometry_adaptive_radius);
   yaml.get("gate_fixes_with_odometry", p.gate_fixes_with_odometry);
+  yaml.get("degraded_fixes", p.degraded_fixes);
   loadParams(yaml.section("peak_cloud"), p.peaks);
   loadParams(yaml.section("global"), p.global);
   loadParams(yaml.section("tracker"), p.tracker);
@@ -284,18 +285,21 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
   if (fix.found) {
     // Refine and check the fix against the local submap (same tests as tracking).
     TrackResult tr = m.tracker.track(cloud, fix.pose, static_cast<long>(fix.keyframe));
+    // A refinement that failed only the weak-direction tests (degenerate) still holds the place the
+    // verifier found unique; it can become a degraded fix with its inflated covariance.
+    const bool usable = tr.accepted || (m.params.degraded_fixes && tr.degenerate);
     // A fix the dead-reckoned pose rules out (chi^2 of the difference under both covariances) is a
     // look-alike place, however well it verifies (docs/localization.md, "Global fixes").
     // The map is not exact either: where the fix lies in another part of the map than the prior's
     // anchor, the two parts' relative pose is uncertain as the odometry that built them.
-    if (tr.accepted && m.prior &&
+    if (usable && m.prior &&
         mahalanobis2(poseDifference(m.prior->pose, tr.icp.pose),
                      m.prior->cov +
                          mapChainCovariance(m.map, m.prior->anchor,
                                             nearestKeyframe(m.map, tr.icp.pose.x, tr.icp.pose.y), ip) +
                          tr.icp.covariance) > m.chi2_threshold) {
       res.check = "prior";
-    } else if (tr.accepted) {
+    } else if (usable) {
       refined = std::move(tr);
     }
   }
@@ -310,7 +314,12 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     m.pending_count = agrees ? m.pending_count + 1 : 1;
     m.pending = p;
     if (m.pending_count >= m.params.confirm_fixes) {
-      accept(*refined, LocalizationStatus::GlobalFix);
+      if (refined->accepted) {
+        accept(*refined, LocalizationStatus::GlobalFix);
+      } else {  // degraded_fixes: tracking goes on from it, its wide covariance starting check (h)
+        accept(*refined, LocalizationStatus::Degraded);
+        res.check = "degenerate_fix";
+      }
       m.fits.clear();
       m.window.clear();
       m.window.addMotion(step.motion, Eigen::Matrix3d::Zero());

@@ -62,11 +62,17 @@ struct LocalizerParams {
   /// integrity.odom_sigma_*) while the odometry keeps tracking without a data gap; a global fix
   /// outside its chi^2 bound (integrity.chi2_probability) is rejected as a look-alike place.
   bool gate_fixes_with_odometry = true;
+  /// A confirmed global fix whose refinement failed only the weak-direction tests (MapTracker's
+  /// `degenerate`: position sigma or a flat fit profile; the verifier found the place unique) is
+  /// reported `degraded` with the refinement's inflated covariance, check `degenerate_fix`, and
+  /// tracking starts from it (its wide prediction makes the next scans re-acquisitions, check (h)).
+  /// false: such fixes are refused and the scan stays `lost`.
+  bool degraded_fixes = true;
 };
 
 /// Overrides from the `localization:` section of `yaml`: motion_compensation, max_missed_scans,
 /// global_retry_interval, map_sweep_period_s, confirm_fixes, confirm_distance_m, confirm_angle_deg,
-/// odometry_adaptive_radius, gate_fixes_with_odometry
+/// odometry_adaptive_radius, gate_fixes_with_odometry, degraded_fixes
 /// and the sections peak_cloud:, global:, tracker:, integrity:.
 void loadParams(const YamlParams& yaml, LocalizerParams& params);
 
