@@ -325,16 +325,16 @@ LoopVerification verifyLoop(std::span<const RadarPoint> query, std::span<const R
     out.information = alignmentInformation(aligned, Vec2(pose.x, pose.y), cfull, params.inlier_distance_m,
                                            params.information);
 
-  if (out.ambiguity_ratio > params.max_ambiguity_ratio)
-    out.reason = "ambiguous place (a distant alignment scores almost as well)";
-  else if (out.inliers < params.min_inliers)
-    out.reason = "too few inliers";
-  else if (out.inlier_ratio < params.min_inlier_ratio)
-    out.reason = "low overlap";
-  else if (out.rms_m > params.max_rms_m)
-    out.reason = "large residual";
-  else if (out.inlier_sectors < params.min_inlier_sectors)
-    out.reason = "inliers not spread around the sensor";
+  // The first failed test other than the ambiguity (empty: all passed).
+  const char* failed = out.inliers < params.min_inliers             ? "too few inliers"
+                       : out.inlier_ratio < params.min_inlier_ratio ? "low overlap"
+                       : out.rms_m > params.max_rms_m               ? "large residual"
+                       : out.inlier_sectors < params.min_inlier_sectors
+                           ? "inliers not spread around the sensor"
+                           : "";
+  const bool ambiguous = out.ambiguity_ratio > params.max_ambiguity_ratio;
+  out.reason = ambiguous ? "ambiguous place (a distant alignment scores almost as well)" : failed;
+  out.ambiguous_only = ambiguous && *failed == '\0';
   out.accepted = out.reason.empty();
   return out;
 }

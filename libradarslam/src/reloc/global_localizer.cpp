@@ -97,16 +97,20 @@ GlobalFix GlobalLocalizer::localize(std::span<const RadarPoint> cloud) const {
                       cand.keyframe, static_cast<double>(cand.distance),
                       v.accepted ? "accepted" : v.reason.c_str(), v.inliers, v.inlier_ratio,
                       v.ambiguity_ratio, v.rivals.size(), rival_m, rival_deg);
+      const mrpt::poses::CPose2D pose =
+          mrpt::poses::CPose2D(map_.keyframes[cand.keyframe].pose) + mrpt::poses::CPose2D(v.relative_pose);
+      if (v.ambiguous_only) {
+        ContestedPlace place{cand.keyframe, {pose.asTPose()}};
+        for (const auto& rival : v.rivals)
+          place.poses.push_back((pose + mrpt::poses::CPose2D(rival)).asTPose());
+        best.contested.push_back(std::move(place));
+      }
       if (!v.accepted) continue;
       if (!best.found || v.inliers > best.verification.inliers) {
         best.found = true;
         best.keyframe = cand.keyframe;
         best.descriptor_distance = cand.distance;
         best.verification = v;
-        const auto& kp = map_.keyframes[cand.keyframe].pose;
-        const mrpt::poses::CPose2D pose =
-            mrpt::poses::CPose2D(kp.x, kp.y, kp.phi) +
-            mrpt::poses::CPose2D(v.relative_pose.x, v.relative_pose.y, v.relative_pose.phi);
         best.pose = pose.asTPose();
       }
     }
@@ -118,6 +122,7 @@ GlobalFix GlobalLocalizer::localize(std::span<const RadarPoint> cloud) const {
     ++in_radius;
   verifyRange(0, in_radius);
   if (!best.found) verifyRange(in_radius, in_radius + params_.fallback_candidates);
+  if (best.found) best.contested.clear();
   return best;
 }
 

@@ -38,14 +38,12 @@ MapTrackerParams forMap(MapTrackerParams p, const KeyframeMap& map) {
   }
   return p;
 }
+}  // namespace
 
-/// Two registrations of one scan are different alignments: farther apart than the inlier gate, or
-/// more than 1 deg.
 bool differentAlignments(const IcpResult& a, const IcpResult& b, const IcpParams& icp) {
   return std::hypot(a.pose.x - b.pose.x, a.pose.y - b.pose.y) > icp.inlier_distance_m ||
          std::abs(std::remainder(a.pose.phi - b.pose.phi, 2 * M_PI)) * 180.0 / M_PI > 1.0;
 }
-}  // namespace
 
 MapTracker::MapTracker(const KeyframeMap& map, const MapTrackerParams& params)
     : map_(map), params_(forMap(params, map)), connectivity_(map) {}

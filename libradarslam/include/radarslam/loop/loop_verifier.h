@@ -71,6 +71,9 @@ struct LoopVerification {
   /// max_ambiguity_ratio of it, each as the pose offset best^-1 (+) rival (in the query's frame at the
   /// best alignment): where else the query fits almost as well. Empty when the place is unique.
   std::vector<mrpt::math::TPose2D> rivals;
+  /// Refused as ambiguous only: the best alignment passed every other acceptance test (global
+  /// localisation can still tell the rivals apart with more of the map, reloc/contested_fix.h).
+  bool ambiguous_only = false;
   int inlier_sectors = 0;
 };
 

@@ -34,6 +34,14 @@ struct GlobalLocalizerParams {
 /// recompute_descriptors and the sections m2dp:, verifier: of `yaml`.
 void loadParams(const YamlParams& yaml, GlobalLocalizerParams& params);
 
+/// A candidate the verifier refused only because another alignment of the keyframe's cloud scores
+/// almost as well (LoopVerification::ambiguous_only): where the scan may be, in the map frame.
+struct ContestedPlace {
+  std::size_t keyframe = 0;  ///< index in map.keyframes
+  /// T_map_keyframe (+) the verifier's alignment, then each of its rivals (LoopVerification::rivals)
+  std::vector<mrpt::math::TPose2D> poses;
+};
+
 struct GlobalFix {
   bool found = false;
   mrpt::math::TPose2D pose;  ///< scan sensor pose in the map frame
@@ -41,6 +49,8 @@ struct GlobalFix {
   float descriptor_distance = 0;
   LoopVerification verification;
   std::size_t verified = 0;  ///< candidates verified
+  /// When no candidate was accepted: the verified ones refused only as ambiguous, in retrieval order.
+  std::vector<ContestedPlace> contested;
 };
 
 /// A candidate keyframe and its descriptor distance.

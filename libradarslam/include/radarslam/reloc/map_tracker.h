@@ -80,6 +80,10 @@ struct TrackResult {
   bool reacquisition_ambiguous = false;
 };
 
+/// Two registrations of one scan are different alignments: farther apart than the inlier gate, or
+/// more than 1 deg.
+bool differentAlignments(const IcpResult& a, const IcpResult& b, const IcpParams& icp);
+
 class MapTracker {
  public:
   /// Keeps a reference to `map` (must outlive this).
