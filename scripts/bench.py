@@ -140,6 +140,7 @@ def localization_metrics(eval_dir):
         "trusted_over_2m_or_2deg": bad,
         "first_fix_scan": int(summary.get("first_fix_scan", "-1")),
         "first_trusted_scan": int(summary.get("first_trusted_scan", "-1")),
+        "contested_fixes": int(summary.get("contested_fixes", "0")),
         "scans_per_s": float(summary.get("scans_per_s", "nan")),
         **nees,
     }

@@ -299,7 +299,8 @@ int runLocalize(int argc, char** argv) {
   err_csv << "# stamp_s scan status position_error_m heading_error_deg fit_score sigma_x_m sigma_y_m "
              "sigma_phi_deg map_position_error_m map_heading_error_deg\n";
   std::size_t done = 0, localised = 0, fixes = 0, far_off = 0, skipped = 0;
-  std::size_t degraded_fixes = 0;  // fixes whose refinement was degenerate (localization.degraded_fixes)
+  std::size_t degraded_fixes = 0;   // fixes whose refinement was degenerate (localization.degraded_fixes)
+  std::size_t contested_fixes = 0;  // fixes at places told apart by the map (resolve_contested_fixes)
   long first_fix = -1, first_trusted = -1;
   LocalizationTiming total;
   const auto t0 = Clock::now();
@@ -340,6 +341,8 @@ int runLocalize(int argc, char** argv) {
       ++localised;
       fixes += r.status == LocalizationStatus::GlobalFix;
       degraded_fixes += r.check == "degenerate_fix";
+      contested_fixes +=
+          r.contested_fix && (r.status == LocalizationStatus::GlobalFix || r.check == "degenerate_fix");
       if (first_fix < 0) first_fix = static_cast<long>(f.index - first);
       if (first_trusted < 0 &&
           (r.status == LocalizationStatus::Tracking || r.status == LocalizationStatus::GlobalFix))
@@ -390,11 +393,11 @@ int runLocalize(int argc, char** argv) {
   std::printf("  scans          %zu processed, %zu localised (%.1f %%), %zu skipped\n", done, localised,
               100.0 * localised / n, skipped);
   std::printf(
-      "  global fixes   %zu + %zu degraded (relocalisations after the first: %zu), first fix at scan %ld, "
-      "first "
-      "trusted pose at scan %ld\n",
-      fixes, degraded_fixes, fixes + degraded_fixes > 0 ? fixes + degraded_fixes - 1 : 0, first_fix,
-      first_trusted);
+      "  global fixes   %zu + %zu degraded, %zu of them at contested places (relocalisations after the "
+      "first: "
+      "%zu), first fix at scan %ld, first trusted pose at scan %ld\n",
+      fixes, degraded_fixes, contested_fixes, fixes + degraded_fixes > 0 ? fixes + degraded_fixes - 1 : 0,
+      first_fix, first_trusted);
   std::printf("  median fit     %.3f (inlier ratio of the localised scans)\n", median(fits));
   std::printf(
       "  speed          %.1f scans/s (%.1f ms/scan: odometry %.1f, cloud %.1f, tracking %.1f, global %.1f); "
@@ -446,9 +449,10 @@ int runLocalize(int argc, char** argv) {
       writeTextAtomically(eval_dir / "errors.csv", err_csv.str());
       std::snprintf(buf, sizeof buf,
                     "scans %zu\nlocalised %zu\nlocalised_percent %.2f\nglobal_fixes %zu\ndegraded_fixes %zu\n"
-                    "first_fix_scan %ld\nfirst_trusted_scan %ld\nmedian_fit %.4f\nscans_per_s %.2f\n",
-                    done, localised, 100.0 * localised / n, fixes, degraded_fixes, first_fix, first_trusted,
-                    median(fits), n / elapsed);
+                    "contested_fixes %zu\nfirst_fix_scan %ld\nfirst_trusted_scan %ld\nmedian_fit "
+                    "%.4f\nscans_per_s %.2f\n",
+                    done, localised, 100.0 * localised / n, fixes, degraded_fixes, contested_fixes, first_fix,
+                    first_trusted, median(fits), n / elapsed);
       writeTextAtomically(eval_dir / "summary.txt", std::string(buf).append(s.str()));
       // The truth in the map frame: GT of `radarslam eval --localization FILE.csv E/truth_map.tum`.
       writeTumTrajectory(eval_dir / "truth_map.tum", truth->truth);

@@ -10,10 +10,12 @@
 #include <optional>
 
 #include "radarslam/core/errors.h"
+#include "radarslam/core/log.h"
 #include "radarslam/core/yaml_params.h"
 #include "radarslam/frontend/odometry.h"
 #include "radarslam/map/keyframe_search.h"
 #include "radarslam/radar/motion_compensation.h"
+#include "radarslam/reloc/fix_hypotheses.h"
 #include "radarslam/reloc/map_motion.h"
 
 namespace radarslam {
@@ -29,6 +31,7 @@ void loadParams(const YamlParams& yaml, LocalizerParams& p) {
   yaml.get("odometry_adaptive_radius", p.odometry_adaptive_radius);
   yaml.get("gate_fixes_with_odometry", p.gate_fixes_with_odometry);
   yaml.get("degraded_fixes", p.degraded_fixes);
+  yaml.get("resolve_contested_fixes", p.resolve_contested_fixes);
   loadParams(yaml.section("peak_cloud"), p.peaks);
   loadParams(yaml.section("global"), p.global);
   loadParams(yaml.section("tracker"), p.tracker);
@@ -108,6 +111,7 @@ struct Localizer::Impl {
   long trusted_keyframe = -1;  ///< nearest map keyframe of the last tracking / global_fix pose
   long anchor = -1;            ///< keyframe of the map copy being tracked (MapTracker::track)
   std::optional<Prior> prior;
+  FixHypotheses hypotheses;  ///< while lost: contested places followed over the scans
   StampNs last_stamp = 0;
   Impl(const KeyframeMap& map_in, const OdometryParams& op, const LocalizerParams& p)
       : compensated(compensatesMap(map_in, p)
@@ -124,7 +128,8 @@ struct Localizer::Impl {
         tracker(map, p.tracker),
         chi2_threshold(chi2Quantile3(p.integrity.chi2_probability)),
         fits(p.integrity),
-        window(p.integrity) {}
+        window(p.integrity),
+        hypotheses(tracker, map, chi2_threshold) {}
   void loseTrack(const mrpt::math::TPose2D& last, const Eigen::Matrix3d& last_cov) {
     if (params.gate_fixes_with_odometry) prior = Prior{last, last_cov, trusted_keyframe};
     loseTrack();
@@ -215,6 +220,9 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     const Eigen::Matrix3d predicted_cov = composeCovariance(m.pose, m.cov, step.motion, odo_cov);
     m.window.addMotion(step.motion, odo_cov);
     const TrackResult tr = m.tracker.track(cloud, predicted, m.anchor, &predicted_cov);
+    if (!tr.accepted)
+      logger().logFmt(mrpt::system::LVL_DEBUG, "tracking: %s%s", tr.degenerate ? "degenerate: " : "",
+                      tr.reason.c_str());
     res.fit_score = tr.icp.fit_score;
     res.inliers = tr.icp.inliers;
     const IcpResult& r = tr.icp;
@@ -267,10 +275,12 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
   }
 
   if (m.pending) m.pending = compose(*m.pending, step.motion);
+  // Dead reckoning (the prior, the contested hypotheses) goes on only through scans the odometry
+  // tracked (a lost or re-initialised odometry, or a gap in the data, says nothing about the
+  // motion: a kidnapping looks like that).
+  const bool odometry_continuous = step.status == TrackingStatus::Tracking && !data_gap;
   if (m.prior) {
-    // Dead reckoning goes on only through scans the odometry tracked (a lost or re-initialised
-    // odometry, or a gap in the data, says nothing about the motion: a kidnapping looks like that).
-    if (step.status != TrackingStatus::Tracking || data_gap) {
+    if (!odometry_continuous) {
       m.prior.reset();
     } else {
       m.prior->cov =
@@ -278,26 +288,70 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
       m.prior->pose = compose(m.prior->pose, step.motion);
     }
   }
-  if (m.lost_scans++ % m.params.global_retry_interval != 0) return res;
+  // A fix the dead-reckoned pose rules out (chi^2 of the difference under both covariances) is a
+  // look-alike place, however well it verifies (docs/localization.md, "Global fixes").
+  // The map is not exact either: where the fix lies in another part of the map than the prior's
+  // anchor, the two parts' relative pose is uncertain as the odometry that built them.
+  const FixHypotheses::Gate prior_allows = [&](const TrackResult& tr) {
+    return !m.prior ||
+           mahalanobis2(poseDifference(m.prior->pose, tr.icp.pose),
+                        m.prior->cov +
+                            mapChainCovariance(m.map, m.prior->anchor,
+                                               nearestKeyframe(m.map, tr.icp.pose.x, tr.icp.pose.y), ip) +
+                            tr.icp.covariance) <= m.chi2_threshold;
+  };
   t0 = Clock::now();
-  const GlobalFix fix = m.global.localize(cloud);
-  std::optional<TrackResult> refined;
+  if (!m.hypotheses.empty()) {
+    if (odometry_continuous)
+      m.hypotheses.advance(cloud, step.motion, odometryCovariance(step.motion, ip), prior_allows);
+    else
+      m.hypotheses.clear();
+  }
+  const bool search = m.lost_scans++ % m.params.global_retry_interval == 0;
+  if (!search && m.hypotheses.empty()) return res;
+  const GlobalFix fix = search ? m.global.localize(cloud) : GlobalFix{};
+  std::optional<TrackResult> candidate;
   if (fix.found) {
     // Refine and check the fix against the local submap (same tests as tracking).
-    TrackResult tr = m.tracker.track(cloud, fix.pose, static_cast<long>(fix.keyframe));
+    candidate = m.tracker.track(cloud, fix.pose, static_cast<long>(fix.keyframe));
+  } else if (m.params.resolve_contested_fixes && !fix.contested.empty()) {
+    // Places refused only as ambiguous become hypotheses, told apart over the next scans; while
+    // they live, each search that points at one again supports it.
+    if (m.hypotheses.empty())
+      m.hypotheses.seed(cloud, fix.contested, prior_allows);
+    else
+      m.hypotheses.support(fix.contested);
+  }
+  if (!m.hypotheses.empty())
+    logger().logFmt(mrpt::system::LVL_DEBUG,
+                    "global: %zu contested places, %zu hypotheses (%zu registrations)", fix.contested.size(),
+                    m.hypotheses.size(), m.hypotheses.registrations());
+  // A fix: tracking goes on from it (a degenerate one as degraded_fixes says, its wide covariance
+  // starting check (h)).
+  auto fixed = [&](const TrackResult& tr) {
+    if (tr.accepted) {
+      accept(tr, LocalizationStatus::GlobalFix);
+    } else {
+      accept(tr, LocalizationStatus::Degraded);
+      res.check = "degenerate_fix";
+    }
+    m.fits.clear();
+    m.window.clear();
+    m.window.addMotion(step.motion, Eigen::Matrix3d::Zero());
+    m.window.addPose(true, res.pose, res.covariance);
+    ++m.fixes;
+    m.prior.reset();
+    m.pending.reset();
+    m.pending_count = 0;
+    m.hypotheses.clear();
+  };
+  std::optional<TrackResult> refined;
+  if (candidate) {
+    TrackResult& tr = *candidate;
     // A refinement that failed only the weak-direction tests (degenerate) still holds the place the
     // verifier found unique; it can become a degraded fix with its inflated covariance.
     const bool usable = tr.accepted || (m.params.degraded_fixes && tr.degenerate);
-    // A fix the dead-reckoned pose rules out (chi^2 of the difference under both covariances) is a
-    // look-alike place, however well it verifies (docs/localization.md, "Global fixes").
-    // The map is not exact either: where the fix lies in another part of the map than the prior's
-    // anchor, the two parts' relative pose is uncertain as the odometry that built them.
-    if (usable && m.prior &&
-        mahalanobis2(poseDifference(m.prior->pose, tr.icp.pose),
-                     m.prior->cov +
-                         mapChainCovariance(m.map, m.prior->anchor,
-                                            nearestKeyframe(m.map, tr.icp.pose.x, tr.icp.pose.y), ip) +
-                         tr.icp.covariance) > m.chi2_threshold) {
+    if (usable && !prior_allows(tr)) {
       res.check = "prior";
     } else if (usable) {
       refined = std::move(tr);
@@ -313,23 +367,19 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
         std::abs(std::remainder(p.phi - m.pending->phi, 2 * M_PI)) * 180 / M_PI <= m.params.confirm_angle_deg;
     m.pending_count = agrees ? m.pending_count + 1 : 1;
     m.pending = p;
-    if (m.pending_count >= m.params.confirm_fixes) {
-      if (refined->accepted) {
-        accept(*refined, LocalizationStatus::GlobalFix);
-      } else {  // degraded_fixes: tracking goes on from it, its wide covariance starting check (h)
-        accept(*refined, LocalizationStatus::Degraded);
-        res.check = "degenerate_fix";
-      }
-      m.fits.clear();
-      m.window.clear();
-      m.window.addMotion(step.motion, Eigen::Matrix3d::Zero());
-      m.window.addPose(true, res.pose, res.covariance);
-      ++m.fixes;
-      m.prior.reset();
-      m.pending.reset();
-      m.pending_count = 0;
-    }
+    if (m.pending_count >= m.params.confirm_fixes) fixed(*refined);
   }
+  // The one contested hypothesis left, registered in confirm_fixes consecutive scans: every rival
+  // ruled out by the map along the drive (reloc/fix_hypotheses.h).
+  // A verified fix of this scan elsewhere contests it: wait.
+  if (!m.have_pose)
+    if (const FixHypothesis* h = m.hypotheses.unique(m.params.confirm_fixes);
+        h && (h->last.accepted || m.params.degraded_fixes) &&
+        (!refined || !differentAlignments(refined->icp, h->last.icp, m.params.tracker.icp))) {
+      const TrackResult tr = h->last;
+      fixed(tr);
+      res.contested_fix = true;
+    }
   res.timing.global = msSince(t0);
   return res;
 }

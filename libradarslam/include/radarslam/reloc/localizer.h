@@ -6,7 +6,9 @@
 //   cloud, motion compensated with the odometry velocity ->
 //     not localised: GlobalLocalizer (M2DP retrieval over all keyframes + verification), the fix
 //                    refined and checked by a MapTracker registration from it, reported once
-//                    confirm_fixes consecutive fixes agree through the odometry -> GlobalFix
+//                    confirm_fixes consecutive fixes agree through the odometry -> GlobalFix;
+//                    places refused only as ambiguous followed as hypotheses over the next scans
+//                    until one is left (reloc/fix_hypotheses.h) -> GlobalFix
 //     localised:     MapTracker registration from last pose (+) T_prev_cur -> Tracking
 //   Every tracked registration goes through the integrity checks (reloc/integrity.h): passed ->
 //   Tracking; a degenerate one fused with the odometry prediction -> Degraded; a failed check (or a
@@ -68,11 +70,23 @@ struct LocalizerParams {
   /// tracking starts from it (its wide prediction makes the next scans re-acquisitions, check (h)).
   /// false: such fixes are refused and the scan stays `lost`.
   bool degraded_fixes = true;
+  /// When no retrieved keyframe verifies but some were refused only as ambiguous (another
+  /// alignment of that one keyframe's cloud scores almost as well), each alignment becomes a
+  /// hypothesis, carried with the odometry and registered against the map around it scan after
+  /// scan until the map rules all but one out; that one, registered in confirm_fixes consecutive
+  /// scans and pointed at by as many global searches, is a fix (reloc/fix_hypotheses.h). false:
+  /// such places stay refused. Off by default: on the train sequences it brought first fixes
+  /// (wall-s12 0 -> 2 of 10 starts, carpark-s16-rain 4 -> 5), but at one start of the train avenue
+  /// the fix was a look-alike 248 m away (the right keyframe never retrieved), and along the curved
+  /// wall the tracking that followed the new fixes went 8-11 deg off with status `tracking` (check
+  /// (g) looks along the weakest xy direction; a curved wall's is a turn about its centre)
+  /// (docs/localization.md, "Contested first fixes").
+  bool resolve_contested_fixes = false;
 };
 
 /// Overrides from the `localization:` section of `yaml`: motion_compensation, max_missed_scans,
 /// global_retry_interval, map_sweep_period_s, confirm_fixes, confirm_distance_m, confirm_angle_deg,
-/// odometry_adaptive_radius, gate_fixes_with_odometry, degraded_fixes
+/// odometry_adaptive_radius, gate_fixes_with_odometry, degraded_fixes, resolve_contested_fixes
 /// and the sections peak_cloud:, global:, tracker:, integrity:.
 void loadParams(const YamlParams& yaml, LocalizerParams& params);
 
@@ -104,6 +118,9 @@ struct LocalizationResult {
   /// A second copy of this place in the map (a revisit the map did not merge) explains the scan
   /// elsewhere almost as well; the localiser stays with the copy it tracks (docs/localization.md).
   bool ambiguous = false;
+  /// This scan's global fix is the last of the hypotheses at places the verifier found ambiguous,
+  /// the others ruled out by the map along the drive (LocalizerParams::resolve_contested_fixes).
+  bool contested_fix = false;
   LocalizationTiming timing;
 };
 
