@@ -73,6 +73,17 @@ std::vector<ContestedPlace> contested(double x = 0) {
       0, {{x + 12.1, 0.2, 0.01}, {x + 0.1, -0.2, 0.0}, {x - 23.9, 0.1, 0.0}, {x - 11.8, 0.0, 0.0}}}};
 }
 
+/// The hypotheses of the scan at the origin of street(building_x), seeded from contested().
+struct SeededAtTheOrigin {
+  Street s;
+  MapTracker tracker;
+  FixHypotheses h;
+  explicit SeededAtTheOrigin(std::optional<double> building_x)
+      : s(street(building_x)), tracker(s.map, params()), h(tracker, s.map, kChi2) {
+    h.seed(scanAt(s, 0), contested());
+  }
+};
+
 Eigen::Matrix3d odometryNoise() { return Eigen::Vector3d(0.05, 0.05, 1e-4).asDiagonal(); }
 
 TEST(FixHypotheses, TheMapAroundTheAlignmentsTellsThemApartInOneScan) {
@@ -120,10 +131,9 @@ TEST(FixHypotheses, TheDriveTellsThemApartWhenTheBuildingComesIntoView) {
 TEST(FixHypotheses, TheLastOneLeftIsAFixOnlyWhenTheSearchPointedAtItAgain) {
   // The right place may never have been seeded: surviving its rivals is not enough, the global
   // search of confirm_fixes scans must have pointed at it.
-  const Street s = street(20.0);
-  MapTracker tracker(s.map, params());
-  FixHypotheses h(tracker, s.map, kChi2);
-  h.seed(scanAt(s, 0), contested());
+  SeededAtTheOrigin seeded(20.0);
+  const Street& s = seeded.s;
+  FixHypotheses& h = seeded.h;
   ASSERT_EQ(h.size(), 1u);
   h.advance(scanAt(s, 10), {10.0, 0.0, 0.0}, odometryNoise());
   h.support({ContestedPlace{1, {{-40.0, 0.0, 0.0}, {10.0, 0.0, 0.5}}}});  // elsewhere, or turned
@@ -137,10 +147,9 @@ TEST(FixHypotheses, TheLastOneLeftIsAFixOnlyWhenTheSearchPointedAtItAgain) {
 }
 
 TEST(FixHypotheses, AMotionTheOdometryDisagreesWithIsDropped) {
-  const Street s = street(20.0);
-  MapTracker tracker(s.map, params());
-  FixHypotheses h(tracker, s.map, kChi2);
-  h.seed(scanAt(s, 0), contested());
+  SeededAtTheOrigin seeded(20.0);
+  const Street& s = seeded.s;
+  FixHypotheses& h = seeded.h;
   ASSERT_EQ(h.size(), 1u);
   // The odometry says 10 m, the scan is from 12 m (a post period further): the map pulls the
   // registration 2 m from the prediction, far outside the odometry's sigma.
