@@ -86,7 +86,7 @@ TEST(LoopVerifier, AmbiguousCorridorIsNotAcceptedAsTheWrongPlace) {
                         std::abs(r.y) < 1.5 && std::abs(r.phi) < 5 * M_PI / 180);
   EXPECT_TRUE(period) << v.rivals.size() << " rivals, none a facade period along the street";
   // Refused for the ambiguity alone: every other test passed (global localisation may still tell
-  // the rivals apart with the map around them, reloc/contested_fix.h).
+  // the rivals apart over the next scans, reloc/fix_hypotheses.h).
   EXPECT_TRUE(v.ambiguous_only) << v.inliers << " inliers, ratio " << v.inlier_ratio;
 }
 

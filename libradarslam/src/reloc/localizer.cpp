@@ -376,7 +376,7 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     if (const FixHypothesis* h = m.hypotheses.unique(m.params.confirm_fixes);
         h && (h->last.accepted || m.params.degraded_fixes) &&
         (!refined || !differentAlignments(refined->icp, h->last.icp, m.params.tracker.icp))) {
-      const TrackResult tr = h->last;
+      const TrackResult tr = h->last;  // a copy: fixed() clears the hypotheses
       fixed(tr);
       res.contested_fix = true;
     }

@@ -72,7 +72,7 @@ struct LoopVerification {
   /// best alignment): where else the query fits almost as well. Empty when the place is unique.
   std::vector<mrpt::math::TPose2D> rivals;
   /// Refused as ambiguous only: the best alignment passed every other acceptance test (global
-  /// localisation can still tell the rivals apart with more of the map, reloc/contested_fix.h).
+  /// localisation can follow the rivals over the next scans, reloc/fix_hypotheses.h).
   bool ambiguous_only = false;
   int inlier_sectors = 0;
 };
