@@ -22,7 +22,7 @@ bool FixHypotheses::usable(const TrackResult& r, const Gate& gate) const {
 bool FixHypotheses::captured(const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b) const {
   const MapTrackerParams& p = tracker_.params();
   return std::hypot(a.x - b.x, a.y - b.y) <= p.icp.max_correspondence_m &&
-         std::abs(std::remainder(a.phi - b.phi, 2 * M_PI)) <= p.icp.max_correspondence_m / p.submap.radius_m;
+         std::abs(std::remainder(a.phi - b.phi, 2 * M_PI)) <= p.headingCaptureRad();
 }
 
 void FixHypotheses::support(const std::vector<ContestedPlace>& places) {

@@ -73,7 +73,7 @@ Eigen::Matrix3d MapTracker::reacquire(const std::vector<Eigen::Vector2d>& thinne
   // and the ICP's own iterations search its capture range).
   const double reach = 3 * std::sqrt(std::max(0.0, es.eigenvalues()(1)));
   const double reach_rad = 3 * std::sqrt(std::max(0.0, predicted_cov(2, 2)));
-  const double capture_rad = params_.icp.max_correspondence_m / params_.submap.radius_m;
+  const double capture_rad = params_.headingCaptureRad();
   const bool wide_xy = reach > params_.icp.inlier_distance_m;
   const bool wide_phi = reach_rad > capture_rad;
   Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();

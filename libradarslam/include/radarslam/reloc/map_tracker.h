@@ -51,6 +51,10 @@ struct MapTrackerParams {
   /// `degenerate`, with their spread (second moment about the kept one) added to its covariance.
   /// 0 = off; valid [0, 10].
   int reacquisition_starts = 2;
+
+  /// The ICP's heading capture range: its correspondence gate (icp.max_correspondence_m) seen at
+  /// the submap's radius, in radians. Two headings closer than this converge to one alignment.
+  double headingCaptureRad() const { return icp.max_correspondence_m / submap.radius_m; }
 };
 
 /// Overrides from min_fit_score, min_inliers, max_rms_m, max_jump_m, max_jump_deg,
