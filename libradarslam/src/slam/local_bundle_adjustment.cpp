@@ -3,26 +3,14 @@
 #include <ceres/ceres.h>
 
 #include <cmath>
+#include <deque>
+#include <memory>
 
+#include "ba_observation_cost.h"
 #include "radarslam/slam/slam_params.h"
 
 namespace radarslam {
 namespace {
-
-/// r = (R(phi)^T (p - t) - z) / sigma, pose = (x, y, phi), point = (x, y).
-struct ObservationCost {
-  ObservationCost(const Eigen::Vector2d& z, double sigma) : z_(z), inv_sigma_(1.0 / sigma) {}
-  template <typename T>
-  bool operator()(const T* pose, const T* point, T* r) const {
-    const T c = ceres::cos(pose[2]), s = ceres::sin(pose[2]);
-    const T dx = point[0] - pose[0], dy = point[1] - pose[1];
-    r[0] = (c * dx + s * dy - T(z_.x())) * T(inv_sigma_);
-    r[1] = (-s * dx + c * dy - T(z_.y())) * T(inv_sigma_);
-    return true;
-  }
-  Eigen::Vector2d z_;
-  double inv_sigma_;
-};
 
 /// Relative-pose prior: (from^-1 (+) to) (-) measured, weighted per component.
 struct RelativePoseCost {
@@ -54,19 +42,24 @@ BAReport solveLocalBundleAdjustment(BAProblem& pb, const LocalMappingParams& par
   std::vector<std::array<double, 2>> p(pb.points.size());
   for (std::size_t j = 0; j < pb.points.size(); ++j) p[j] = {pb.points[j].x(), pb.points[j].y()};
 
+  // The observation costs live in one deque (a few allocations instead of one per residual); the
+  // problem owns only the few prior costs.
+  std::deque<slam_detail::ObservationCost> observation_costs;  // not movable: no reallocation
+  for (const auto& o : pb.observations) observation_costs.emplace_back(o.z, params.observation_sigma_m);
+  std::vector<std::unique_ptr<ceres::CostFunction>> prior_costs;
   ceres::Problem::Options po;
   po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(po);
   ceres::HuberLoss huber(params.huber_sigmas);
-  for (const auto& o : pb.observations) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ObservationCost, 2, 3, 2>(
-                                 new ObservationCost(o.z, params.observation_sigma_m)),
-                             &huber, x[o.keyframe].data(), p[o.point].data());
+  for (std::size_t i = 0; i < pb.observations.size(); ++i) {
+    const BAObservation& o = pb.observations[i];
+    problem.AddResidualBlock(&observation_costs[i], &huber, x[o.keyframe].data(), p[o.point].data());
   }
   for (const auto& pr : pb.priors) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<RelativePoseCost, 3, 3, 3>(new RelativePoseCost(
-                                 pr.relative, params.prior_sigma_xy_m, params.prior_sigma_phi_rad)),
-                             nullptr, x[pr.from].data(), x[pr.to].data());
+    prior_costs.push_back(std::make_unique<ceres::AutoDiffCostFunction<RelativePoseCost, 3, 3, 3>>(
+        new RelativePoseCost(pr.relative, params.prior_sigma_xy_m, params.prior_sigma_phi_rad)));
+    problem.AddResidualBlock(prior_costs.back().get(), nullptr, x[pr.from].data(), x[pr.to].data());
   }
   bool any_fixed = false;
   for (std::size_t i = 0; i < x.size(); ++i) {

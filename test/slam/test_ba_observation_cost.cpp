@@ -1,0 +1,42 @@
+// The local BA's observation residual (slam/ba_observation_cost.h): its value is the map point seen
+// from the keyframe minus the measurement, over sigma, and its analytic Jacobians agree with
+// Ceres' finite differences at random poses and points.
+#include <ceres/gradient_checker.h>
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "ba_observation_cost.h"
+
+namespace radarslam::slam_detail {
+namespace {
+
+TEST(BAObservationCost, ResidualIsThePointInTheKeyframeFrameMinusTheMeasurement) {
+  const ObservationCost cost(Eigen::Vector2d(1.0, -2.0), 0.5);
+  const double pose[3] = {10.0, 5.0, M_PI / 2};  // x axis of the keyframe points north
+  const double point[2] = {13.0, 9.0};           // 4 m ahead, 3 m to the right
+  const double* params[2] = {pose, point};
+  double r[2];
+  ASSERT_TRUE(cost.Evaluate(params, r, nullptr));
+  EXPECT_NEAR(r[0], (4.0 - 1.0) / 0.5, 1e-12);
+  EXPECT_NEAR(r[1], (-3.0 + 2.0) / 0.5, 1e-12);
+}
+
+TEST(BAObservationCost, AnalyticJacobiansMatchFiniteDifferences) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> xy(-80, 80), phi(-M_PI, M_PI);
+  const ceres::NumericDiffOptions numeric;
+  for (int i = 0; i < 50; ++i) {
+    const ObservationCost cost(Eigen::Vector2d(xy(rng), xy(rng)), 0.05);
+    const ceres::GradientChecker checker(
+        &cost, static_cast<const std::vector<const ceres::Manifold*>*>(nullptr), numeric);
+    const double pose[3] = {xy(rng), xy(rng), phi(rng)};
+    const double point[2] = {xy(rng), xy(rng)};
+    const double* params[2] = {pose, point};
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(params, 1e-6, &results)) << results.error_log;
+  }
+}
+
+}  // namespace
+}  // namespace radarslam::slam_detail
