@@ -93,7 +93,8 @@ int runMap(int argc, char** argv) {
   TCLAP::ValueArg<int> threads_arg(
       "", "threads",
       "1: tracking, local mapping and loop closing in one thread (deterministic); "
-      "3: each in its own thread (default: slam.threads of the config, 3)",
+      "3: each in its own thread, and the scans decoded ahead in a fourth (default: slam.threads of "
+      "the config, 3)",
       false, 0, "N", cmd.tclap());
   TCLAP::SwitchArg skip_arg("", "skip-bad-scans", "Skip (with a warning) scans that cannot be read",
                             cmd.tclap());
@@ -175,7 +176,8 @@ int runMap(int argc, char** argv) {
 
   if (base)
     std::cerr << "map: extending " << base_dir.string() << " (" << base->keyframes.size() << " keyframes)\n";
-  ScanIterator scans(*reader, skip_arg.getValue(), first, end);
+  // One thread means one: the scans are then decoded in the tracking thread too.
+  ScanIterator scans(*reader, skip_arg.getValue(), first, end, params.threads >= 2 ? kPrefetchScans : 0);
   const auto t0 = Clock::now();
   std::size_t done = 0;
   ProgressLine progress("map", scans.total(), !quiet_arg.getValue());

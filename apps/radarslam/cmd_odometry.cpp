@@ -99,7 +99,7 @@ int runOdometry(int argc, char** argv) {
             << first << ".." << end - 1 << " of " << reader->size() << ", config " << config_used << "\n";
 
   RadarOdometry odometry(params);
-  ScanIterator scans(*reader, skip_arg.getValue(), first, end);
+  ScanIterator scans(*reader, skip_arg.getValue(), first, end, kPrefetchScans);
   const auto t0 = Clock::now();
   std::size_t done = 0, lost = 0, keyframes = 0, widened = 0;
   StageTimes total;

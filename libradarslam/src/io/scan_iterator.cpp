@@ -5,6 +5,7 @@
 #include "radarslam/core/errors.h"
 #include "radarslam/core/log.h"
 #include "radarslam/io/dataset.h"
+#include "scan_prefetcher.h"
 
 namespace radarslam {
 
@@ -28,28 +29,30 @@ StampNs medianIndexInterval(const DatasetReader& reader, std::size_t first, std:
   return d[d.size() / 2];
 }
 
-bool isBlank(const CObservationRadarScan& scan) {
-  return std::all_of(scan.power.begin(), scan.power.end(), [](std::uint8_t p) { return p == 0; });
-}
-
 }  // namespace
 
 ScanIterator::ScanIterator(const DatasetReader& reader, bool skip_bad_scans, std::size_t first,
-                           std::size_t end)
+                           std::size_t end, std::size_t prefetch)
     : reader_(reader), skip_(skip_bad_scans) {
   end_ = std::min(end, reader.size());
   first_ = std::min(first, end_);
   pos_ = first_;
   stats_.scan_period_ns = medianIndexInterval(reader, first_, end_);
+  if (prefetch > 0 && end_ > first_)
+    prefetcher_ = std::make_unique<io_detail::ScanPrefetcher>(reader, first_, end_, prefetch);
 }
+
+ScanIterator::~ScanIterator() = default;
 
 CObservationRadarScan::Ptr ScanIterator::next() {
   while (pos_ < end_) {
     const std::size_t i = pos_++;
     try {
-      auto scan = reader_.readScan(i);
-      if (const std::string why = scan->checkConsistency(); !why.empty())
-        throw InputError(reader_.scanPath(i).string(), "inconsistent scan: " + why);
+      io_detail::FetchedScan fetched = prefetcher_ ? prefetcher_->take() : io_detail::fetchScan(reader_, i);
+      if (fetched.error) std::rethrow_exception(fetched.error);
+      auto scan = std::move(fetched.scan);
+      if (!fetched.inconsistency.empty())
+        throw InputError(reader_.scanPath(i).string(), "inconsistent scan: " + fetched.inconsistency);
       const StampNs t = scan->refStampNs();
       if (have_last_stamp_ && t == last_stamp_) {  // a duplicated index entry: not an error
         ++skipped_;
@@ -71,7 +74,7 @@ CObservationRadarScan::Ptr ScanIterator::next() {
                           toSeconds(dt), i, toSeconds(stats_.scan_period_ns));
         }
       }
-      if (isBlank(*scan)) {
+      if (fetched.blank) {
         ++stats_.blank;
         logger().logFmt(mrpt::system::LVL_WARN, "scan %zu (%s) is blank (no return at all)", i,
                         reader_.scanPath(i).string().c_str());

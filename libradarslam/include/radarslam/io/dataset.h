@@ -19,6 +19,10 @@
 
 namespace radarslam {
 
+namespace io_detail {
+class ScanPrefetcher;
+}
+
 enum class DatasetKind { Oxford, MulRanOxfordForm, MulRanPolar, Boreas, Radiate, Rawlog };
 
 std::string toString(DatasetKind kind);
@@ -93,10 +97,17 @@ struct ScanIteratorStats {
 /// same reference time as the previous one (a duplicated index entry) is always skipped with a
 /// warning; an earlier one is a bad scan. Blank scans and time gaps are passed on, but counted
 /// (stats()) and logged.
+///
+/// prefetch > 0: a background thread decodes up to that many scans ahead, so decoding overlaps
+/// the caller's work on the previous scan. The scans, their order, the warnings and the errors
+/// are the same as without it (a scan past a fatal error may have been decoded, never returned).
 class ScanIterator {
  public:
   ScanIterator(const DatasetReader& reader, bool skip_bad_scans, std::size_t first = 0,
-               std::size_t end = static_cast<std::size_t>(-1));
+               std::size_t end = static_cast<std::size_t>(-1), std::size_t prefetch = 0);
+  ~ScanIterator();
+  ScanIterator(const ScanIterator&) = delete;
+  ScanIterator& operator=(const ScanIterator&) = delete;
   /// The next good scan, or nullptr at the end.
   CObservationRadarScan::Ptr next();
   /// Dataset index of the scan last returned by next().
@@ -112,6 +123,7 @@ class ScanIterator {
   StampNs last_stamp_ = 0;
   bool have_last_stamp_ = false;
   ScanIteratorStats stats_;
+  std::unique_ptr<io_detail::ScanPrefetcher> prefetcher_;
 };
 
 }  // namespace radarslam
