@@ -28,7 +28,7 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/radarslamConfig.cmake.
                               PATH_VARS RADARSLAM_INSTALL_DATADIR)
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/radarslamConfigVersion.cmake COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/radarslamConfig.cmake ${PROJECT_BINARY_DIR}/radarslamConfigVersion.cmake
-        DESTINATION ${RADARSLAM_INSTALL_CMAKEDIR})
+              ${PROJECT_SOURCE_DIR}/cmake/FindLibdeflate.cmake DESTINATION ${RADARSLAM_INSTALL_CMAKEDIR})
 
 # pkg-config: our static libraries in link order, then MRPT's (Debian ships no .pc for MRPT).
 set(RADARSLAM_PC_LIBS "")

@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
-  libmrpt-graphslam-dev libeigen3-dev libopencv-dev liboctomap-dev libpng-dev
+  libmrpt-graphslam-dev libeigen3-dev libopencv-dev liboctomap-dev libpng-dev libdeflate-dev
   cyclonedds-dev cyclonedds-tools libceres-dev libtclap-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   mrpt-apps  # rawlog-edit: test_cli_mrpt_plugin reads our rawlogs with MRPT's own tool

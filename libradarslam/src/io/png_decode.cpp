@@ -7,6 +7,7 @@
 #include <cstring>
 #include <string>
 
+#include "png_fast_decode.h"
 #include "radarslam/core/errors.h"
 
 namespace radarslam::io_detail {
@@ -80,6 +81,9 @@ Decoded decodeRows(PngSource& src, unsigned char* out, png_uint_32& width, png_u
 }  // namespace
 
 cv::Mat decodeGreyPng(const unsigned char* bytes, std::size_t size, const std::filesystem::path& file) {
+  constexpr unsigned long long kMaxPixels = 64ULL << 20;  // 25x the largest radar scan (RAS6)
+  // The common case (8-bit greyscale, intact) with libdeflate; libpng for the rest and for errors.
+  if (cv::Mat fast; decodeGrey8PngFast(bytes, size, kMaxPixels, fast)) return fast;
   PngSource src;
   src.data = bytes;
   src.size = size;
@@ -87,7 +91,6 @@ cv::Mat decodeGreyPng(const unsigned char* bytes, std::size_t size, const std::f
   int color_type = 0, bit_depth = 0;
   Decoded d = decodeRows(src, nullptr, width, height, color_type, bit_depth);
   if (d == Decoded::not_grey8) notGrey8(file, color_type, bit_depth);
-  constexpr unsigned long long kMaxPixels = 64ULL << 20;  // 25x the largest radar scan (RAS6)
   if (d == Decoded::ok && static_cast<unsigned long long>(width) * height > kMaxPixels)
     throw InputError(file.string(), "PNG claims " + std::to_string(width) + " x " + std::to_string(height) +
                                         " pixels, more than any radar scan");
