@@ -4,26 +4,40 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 #include "radarslam/slam/local_bundle_adjustment.h"
 
 namespace radarslam::slam_detail {
 
-void LocalMapper::insert(const KeyframeJob& job) {
+void LocalMapper::describe(KeyframeJob& job) const {
   const auto t0 = std::chrono::steady_clock::now();
-  // Peak cloud (Algorithm 1) moved to the scan's reference time, and its M2DP descriptor (both
-  // signs of the PCA axis, see loop/m2dp.h): outside the lock, this is the expensive part.
   auto cloud = std::make_shared<std::vector<RadarPoint>>(motionCompensated(
       extractPeakCloud(*job.scan, params_.loop_closing.peak_cloud), *job.scan, job.velocity));
+  job.descriptor = computeM2DP(*cloud, params_.loop_closing.m2dp);
+  job.descriptor_flipped = computeM2DP(*cloud, params_.loop_closing.m2dp, true);
+  job.cloud = std::move(cloud);
+  job.scan.reset();  // not needed further: the scan's memory goes back now
+  job.describe_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void LocalMapper::insert(const KeyframeJob& job) {
+  if (!job.cloud) {  // not described yet (a caller without the describe stage)
+    KeyframeJob described = job;
+    describe(described);
+    insert(described);
+    return;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
   SlamKeyframe kf;
   kf.id = job.id;
   kf.stamp = job.stamp;
   kf.odom_pose = job.odom_pose;
   kf.lost = job.lost;
   kf.travelled_m = job.travelled_m;
-  kf.descriptor = computeM2DP(*cloud, params_.loop_closing.m2dp);
-  kf.descriptor_flipped = computeM2DP(*cloud, params_.loop_closing.m2dp, true);
-  kf.cloud = std::move(cloud);
+  kf.descriptor = job.descriptor;
+  kf.descriptor_flipped = job.descriptor_flipped;
+  kf.cloud = job.cloud;
   kf.keypoints = job.keypoints;
   kf.keypoint_point.assign(job.keypoints.size(), -1);
   kf.keypoint_offset.assign(job.keypoints.size(), Eigen::Vector2d::Zero());
@@ -48,6 +62,7 @@ void LocalMapper::insert(const KeyframeJob& job) {
     bundleAdjust(job.id);
   std::lock_guard lock(state_.mutex);
   state_.stats.local_mapping_ms +=
+      job.describe_ms +
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 

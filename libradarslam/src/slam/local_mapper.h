@@ -26,12 +26,21 @@ struct KeyframeJob {
   std::vector<Eigen::Vector2d> keypoints;
   std::vector<KeyframeObservation> observations;  ///< OdometryStep::keyframe_observations
   std::shared_ptr<const CObservationRadarScan> scan;
+  // Filled by LocalMapper::describe() (threaded: in a stage of its own, before insert()).
+  std::shared_ptr<const std::vector<RadarPoint>> cloud;
+  M2DPDescriptor descriptor, descriptor_flipped;
+  double describe_ms = 0;
 };
 
 class LocalMapper {
  public:
   LocalMapper(SlamState& state, const SlamParams& params) : state_(state), params_(params) {}
-  /// Inserts the keyframe (ids arrive in order 0, 1, 2, ...) and runs the local BA.
+  /// The keyframe's peak cloud (Algorithm 1) moved to the scan's reference time, and its M2DP
+  /// descriptors (both signs of the PCA axis, see loop/m2dp.h). Touches no shared state: the
+  /// threaded pipeline runs it in a stage of its own, one keyframe ahead of insert().
+  void describe(KeyframeJob& job) const;
+  /// Inserts the keyframe (ids arrive in order 0, 1, 2, ...; described first if it was not) and
+  /// runs the local BA.
   void insert(const KeyframeJob& job);
 
  private:

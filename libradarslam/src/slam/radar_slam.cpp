@@ -21,13 +21,22 @@ struct ScanAnchor {
   std::uint64_t keyframe = 0;
   TPose2D odom_pose;
 };
-constexpr std::size_t kQueueCapacity = 8;  // keyframe jobs (each holds one scan) in flight
+constexpr std::size_t kQueueCapacity = 8;  // keyframe jobs per queue (until described, each holds a scan)
 }  // namespace
 
 struct RadarSlam::Impl {
   explicit Impl(const SlamParams& p)
       : params(p), odometry(p.odometry), mapper(state, params), closer(state, params) {
     if (params.threads >= 2) {
+      // Tracking -> describe (peak cloud, M2DP) -> local mapping -> loop closing, each stage in its
+      // own thread: describing needs only the job, so it overlaps the previous keyframe's BA.
+      describe_thread = std::thread([this] {
+        while (auto job = describe_queue.pop()) {
+          mapper.describe(*job);
+          mapping_queue.push(std::move(*job));
+        }
+        mapping_queue.close();
+      });
       mapping_thread = std::thread([this] {
         while (auto job = mapping_queue.pop()) {
           mapper.insert(*job);
@@ -43,6 +52,8 @@ struct RadarSlam::Impl {
   ~Impl() { stopThreads(); }
 
   void stopThreads() {
+    describe_queue.close();
+    if (describe_thread.joinable()) describe_thread.join();
     mapping_queue.close();
     if (mapping_thread.joinable()) mapping_thread.join();
     loop_queue.close();
@@ -54,9 +65,9 @@ struct RadarSlam::Impl {
   RadarOdometry odometry;
   LocalMapper mapper;
   LoopCloser closer;
-  WorkQueue<KeyframeJob> mapping_queue{kQueueCapacity};
+  WorkQueue<KeyframeJob> describe_queue{kQueueCapacity}, mapping_queue{kQueueCapacity};
   WorkQueue<std::uint64_t> loop_queue{kQueueCapacity};
-  std::thread mapping_thread, loop_thread;
+  std::thread describe_thread, mapping_thread, loop_thread;
 
   std::vector<ScanAnchor> anchors;
   std::uint64_t next_keyframe = 0;
@@ -165,8 +176,9 @@ struct RadarSlam::Impl {
       job.observations = o.keyframe_observations;
       job.scan = std::make_shared<CObservationRadarScan>(scan);
       if (params.threads >= 2) {
-        mapping_queue.push(std::move(job));
+        describe_queue.push(std::move(job));
       } else {
+        mapper.describe(job);
         mapper.insert(job);
         closer.process(job.id);
       }

@@ -98,7 +98,8 @@ struct SlamParams {
   /// Applied by `radarslam map` before saving (map/keyframe_culling.h), not during the run.
   KeyframeCullingParams keyframe_culling;
   /// 1: everything runs in the caller's thread (deterministic); >= 2: local mapping and loop
-  /// closing run in their own threads, as in the paper.
+  /// closing run in their own threads, as in the paper, and keyframe description (peak cloud,
+  /// M2DP) in a third, ahead of local mapping.
   int threads = 3;  ///< valid [1, 64]
   /// The published layers saved with the map (section `map_layers:`, map/map_layers.h).
   MapLayerParams map_layers;
