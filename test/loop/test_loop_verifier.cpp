@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 #include <cmath>
+#include <string>
 
 #include "radarslam/core/errors.h"
 #include "radarslam/core/yaml_params.h"
@@ -19,6 +20,14 @@ using looptest::observe;
 mrpt::math::TPose2D relative(double ax, double ay, double ayaw, double bx, double by, double byaw) {
   const double c = std::cos(ayaw), s = std::sin(ayaw), dx = bx - ax, dy = by - ay;
   return {c * dx + s * dy, -s * dx + c * dy, std::remainder(byaw - ayaw, 2 * M_PI)};
+}
+
+std::string describeRivals(const LoopVerification& v) {
+  std::string s = std::to_string(v.rivals.size()) + " rivals:";
+  for (const auto& r : v.rivals)
+    s += " (" + std::to_string(r.x) + ", " + std::to_string(r.y) + ", " + std::to_string(r.phi * 180 / M_PI) +
+         " deg)";
+  return s;
 }
 
 void expectPoseNear(const mrpt::math::TPose2D& got, const mrpt::math::TPose2D& want, double tol_m,
@@ -88,6 +97,41 @@ TEST(LoopVerifier, AmbiguousCorridorIsNotAcceptedAsTheWrongPlace) {
   // Refused for the ambiguity alone: every other test passed (global localisation may still tell
   // the rivals apart over the next scans, reloc/fix_hypotheses.h).
   EXPECT_TRUE(v.ambiguous_only) << v.inliers << " inliers, ratio " << v.inlier_ratio;
+  // Not a slide: this street is the same both ways, so it also fits turned by 180 degrees (the
+  // heading is ambiguous too, and a partial loop must not be made of it).
+  EXPECT_FALSE(v.slide) << describeRivals(v);
+}
+
+// Ambiguities that are not one slide (rivals turned, or off the line) are not reported as one.
+TEST(LoopVerifier, ASlideIsOneLineAtOneHeading) {
+  const auto world = looptest::randomWorld(15);
+  const auto a = observe(world, 0, 0, 0, 1), b = observe(world, 2, 1, 0.5, 2);
+  const auto unique = verifyLoop(b, a);
+  EXPECT_TRUE(unique.accepted);
+  EXPECT_FALSE(unique.slide) << "a unique place has no rivals to slide to";
+  // The candidate holds the query's scene twice, 30 m apart along x, and (a second candidate) a
+  // third time turned by 90 degrees: the query fits at two places, or at three, one of them turned.
+  const auto scene = observe(world, 0, 0, 0, 3);
+  auto moved = [](RadarPoint p, double x, double y) {
+    p.x = static_cast<float>(x);
+    p.y = static_cast<float>(y);
+    return p;
+  };
+  std::vector<RadarPoint> along = scene, turned = scene;
+  for (const auto& p : scene) along.push_back(moved(p, p.x + 30, p.y));
+  for (const auto& p : scene) turned.push_back(moved(p, p.x + 30, p.y));
+  for (const auto& p : scene) turned.push_back(moved(p, -p.y - 30, p.x));
+  LoopVerifierParams params;
+  params.min_inlier_ratio = 0;  // the copies make the candidate larger than the query
+  const auto two = verifyLoop(scene, along, params);
+  EXPECT_FALSE(two.accepted);
+  EXPECT_TRUE(two.slide) << describeRivals(two) << ", ambiguity " << two.ambiguity_ratio << ", "
+                         << two.reason;
+  EXPECT_GT(std::abs(two.slide_direction.x()), 0.99);
+  EXPECT_NEAR(two.slide_extent_m, 30.0, 1.0);
+  const auto three = verifyLoop(scene, turned, params);
+  EXPECT_FALSE(three.accepted);
+  EXPECT_FALSE(three.slide) << describeRivals(three) << ", one of them turned by 90 degrees";
 }
 
 TEST(LoopVerifier, RejectsTinyCloudsAndDeterministic) {

@@ -234,6 +234,27 @@ bool near(const Pose& a, const Pose& b, const LoopVerifierParams& p) {
          angleDiff(a.th, b.th) < p.suppression_angle_deg * M_PI / 180.0;
 }
 
+/// Whether every rival is a slide of the best alignment along one line (see LoopVerification::slide);
+/// sets the line's direction and the farthest rival along it.
+bool slideAlongOneLine(const std::vector<mrpt::math::TPose2D>& rivals, const LoopVerifierParams& p,
+                       Vec2& direction, double& extent) {
+  if (rivals.empty()) return false;
+  const double step = 2 * M_PI / p.rotation_steps;
+  const auto farthest = std::max_element(rivals.begin(), rivals.end(), [](const auto& a, const auto& b) {
+    return std::hypot(a.x, a.y) < std::hypot(b.x, b.y);
+  });
+  const double length = std::hypot(farthest->x, farthest->y);
+  if (length <= p.inlier_distance_m) return false;
+  const Vec2 u(farthest->x / length, farthest->y / length);
+  for (const auto& r : rivals) {
+    const double across = std::abs(u.x() * r.y - u.y() * r.x);
+    if (std::abs(r.phi) > step || across > p.inlier_distance_m) return false;
+  }
+  direction = u;
+  extent = length;
+  return true;
+}
+
 mrpt::maps::CSimplePointsMap toMap(std::span<const RadarPoint> c) {
   mrpt::maps::CSimplePointsMap m;
   m.reserve(c.size());
@@ -283,6 +304,7 @@ LoopVerification verifyLoop(std::span<const RadarPoint> query, std::span<const R
     const Vec2 d = best.pose.inverseApply(Vec2(r.x, r.y));
     out.rivals.push_back({d.x(), d.y(), std::remainder(r.th - best.pose.th, 2 * M_PI)});
   }
+  out.slide = slideAlongOneLine(out.rivals, params, out.slide_direction, out.slide_extent_m);
 
   // 3. CICP refinement on the full clouds (the query aligned onto the candidate).
   const mrpt::maps::CSimplePointsMap cmap = toMap(candidate), qmap = toMap(query);

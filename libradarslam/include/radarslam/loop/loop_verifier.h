@@ -11,7 +11,10 @@
 //     clouds and scored by their inlier count (RANSAC-style consensus).
 //  2. Uniqueness (ambiguous places, e.g. a street of identical facades): the best hypothesis must
 //     beat every hypothesis that is far from it in pose by a margin (second / best <=
-//     max_ambiguity_ratio); otherwise the place is ambiguous and the loop is rejected.
+//     max_ambiguity_ratio); otherwise the place is ambiguous and the loop is rejected. When every
+//     rival is the best alignment slid along one line at the same heading (a straight featureless
+//     wall; not a street that also fits turned by 180 degrees), the result says so (`slide`): the place is
+//     then known across that line and in heading, unknown along it, which a caller may use as a partial loop.
 //  3. Refinement: mrpt::slam::CICP (classic ICP) on the full clouds from the best hypothesis.
 //  4. Acceptance: enough inliers (absolute and as a share of the smaller cloud), a small inlier
 //     RMS, and inliers spread around the sensor (at least min_inlier_sectors of 8 bearing sectors).
@@ -74,6 +77,14 @@ struct LoopVerification {
   /// Refused as ambiguous only: the best alignment passed every other acceptance test (global
   /// localisation can follow the rivals over the next scans, reloc/fix_hypotheses.h).
   bool ambiguous_only = false;
+  /// The rivals are all slides of the best alignment along one line: each within one search
+  /// rotation step (360 / rotation_steps degrees) of its heading and within inlier_distance_m of
+  /// that line (across it they agree as closely as the inlier gate can tell).
+  bool slide = false;
+  /// When `slide`: the line's unit direction, in the same frame as the rivals' offsets (the query's
+  /// frame, that of relative_pose's error), and the farthest rival along it.
+  Eigen::Vector2d slide_direction = Eigen::Vector2d::Zero();
+  double slide_extent_m = 0;
   int inlier_sectors = 0;
 };
 
