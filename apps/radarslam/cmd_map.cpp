@@ -59,7 +59,7 @@ double peakRssMiB() {
 std::string loopsCsv(const std::vector<LoopRecord>& loops) {
   std::ostringstream s;
   s << "# query_keyframe,match_keyframe,descriptor_distance,accepted,rejected_by_graph,x,y,phi,inlier_ratio,"
-       "ambiguity_ratio,sigma_x,sigma_y,sigma_phi,reason\n";
+       "ambiguity_ratio,sigma_x,sigma_y,sigma_phi,partial,reason\n";
   for (const auto& l : loops) {
     // Marginal sigmas of the verifier's information (inf where it constrains nothing).
     Eigen::Vector3d sigma = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
@@ -68,7 +68,7 @@ std::string loopsCsv(const std::vector<LoopRecord>& loops) {
     s << l.query << ',' << l.match << ',' << l.descriptor_distance << ',' << l.accepted << ','
       << l.rejected_by_graph << ',' << l.relative.x << ',' << l.relative.y << ',' << l.relative.phi << ','
       << l.inlier_ratio << ',' << l.ambiguity_ratio << ',' << sigma.x() << ',' << sigma.y() << ','
-      << sigma.z() << ',' << l.reason << '\n';
+      << sigma.z() << ',' << l.slide << ',' << l.reason << '\n';
   }
   return s.str();
 }
@@ -245,9 +245,10 @@ int runMap(int argc, char** argv) {
           buf, sizeof buf,
           "  loop truth     recall %.2f (%zu of %zu keyframes with a true loop), %zu false accepted "
           "(%zu left in the graph), max error of true loops %.2f m / %.2f deg, information NEES mean %.1f "
-          "(%.0f %% within chi2(3) 95 %%)\n",
+          "(%.0f %% within chi2(3) 95 %%); %zu partial loops (along one line), %zu of them false\n",
           le.recall, le.keyframes_with_loop_found, le.keyframes_with_true_loop, le.false_accepted,
-          le.false_in_graph, le.max_error_m, le.max_error_deg, le.nees_mean, 100 * le.nees_within_95);
+          le.false_in_graph, le.max_error_m, le.max_error_deg, le.nees_mean, 100 * le.nees_within_95,
+          le.slide_accepted, le.slide_false);
       eval_text += buf;
       const MapConsistency mc = evaluateMapConsistency(map, gt);
       std::snprintf(

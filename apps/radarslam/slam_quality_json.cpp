@@ -39,6 +39,8 @@ std::string slamQualityJson(const eval::EvalReport& slam, const eval::EvalReport
        ", \"false_in_graph\": " + std::to_string(loops.false_in_graph) +
        ", \"recall\": " + number(loops.recall) + ", \"nees_mean\": " + number(loops.nees_mean) +
        ", \"nees_within_95\": " + number(loops.nees_within_95) +
+       ", \"slide_accepted\": " + std::to_string(loops.slide_accepted) +
+       ", \"slide_false\": " + std::to_string(loops.slide_false) +
        ", \"keyframes_with_true_loop\": " + std::to_string(loops.keyframes_with_true_loop) + "},\n";
   s += "  \"map_consistency\": {\"revisits\": " + pairs(consistency.revisits) +
        ", \"all\": " + pairs(consistency.all) + "}\n}\n";

@@ -3,6 +3,7 @@
 // a session start makes it unknown; the chi2 drift gate passes what the covariance explains.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <cmath>
 #include <random>
@@ -91,6 +92,52 @@ TEST(LoopInformation, EstimatedKeepsTheAlignmentsDegeneracyAndTheModelFloor) {
   EXPECT_NEAR(info(1, 1), 1 / (p.loop_sigma_xy_m * p.loop_sigma_xy_m), 1.0);  // across: the floor
   p.loop_information_estimated = false;
   EXPECT_NEAR(loopInformation(wall, p)(0, 0), 1 / (p.loop_sigma_xy_m * p.loop_sigma_xy_m), 1e-9);
+}
+
+// The loop's covariance is given in the query's frame (the pose graph's edge error); the gate's
+// difference is in the match's. A loop unknown along the query's x, at 90 degrees to the match:
+// unknown along the match's y.
+TEST(DriftGate, TurnsTheLoopCovarianceIntoTheMatchsFrame) {
+  const Eigen::Matrix3d chain = Eigen::Vector3d(0.01, 0.01, 1e-4).asDiagonal();
+  const Eigen::Matrix3d loop_info = Eigen::Vector3d(1e-6, 100, 1e4).asDiagonal();  // unknown along x
+  const TPose2D loop(10, 0, M_PI / 2);
+  EXPECT_LT(correctionMahalanobis2(loop, TPose2D(10, 30, M_PI / 2), chain, loop_info), 1.0);
+  EXPECT_GT(correctionMahalanobis2(loop, TPose2D(13, 0, M_PI / 2), chain, loop_info), 100.0);
+}
+
+TEST(LoopInformation, APartialLoopConstrainsOnlyAcrossItsLine) {
+  LoopClosingParams p;
+  const Eigen::Matrix3d full = loopInformation(Eigen::Matrix3d::Zero(), p);
+  const Eigen::Vector2d along(std::cos(0.3), std::sin(0.3)), across(-along.y(), along.x());
+  const Eigen::Matrix3d info = slideLoopInformation(full, along);
+  EXPECT_TRUE(info.isApprox(info.transpose()));
+  const Eigen::Vector3d a(along.x(), along.y(), 0), c(across.x(), across.y(), 0), h(0, 0, 1);
+  EXPECT_LT(a.dot(info * a), 1e-8);                                  // along the line: unconstrained
+  EXPECT_NEAR(c.dot(info * c), c.dot(full * c), 1e-6 * full(0, 0));  // across: as the full loop
+  EXPECT_NEAR(h.dot(info * h), h.dot(full * h), 1e-6 * full(2, 2));  // heading: as the full loop
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(info).eigenvalues().minCoeff(), 0.0);
+}
+
+// A loop refused only because the place also fits elsewhere is unique where the drift gate lets a
+// loop be when every rival, as a relative pose (verified pose (+) rival offset), is outside the gate.
+TEST(UniqueWithinGate, RivalsTheGateRefusesDoNotMakeAPlaceAmbiguous) {
+  LoopVerification v;
+  v.ambiguous_only = true;
+  v.relative_pose = TPose2D(10, 0, M_PI / 2);  // the query 10 m ahead of the match, turned left
+  v.rivals = {TPose2D(0, 30, 0)};              // 30 m to the query's left: (-20, 0) in the match's frame
+  // A gate around the match's origin, 15 m: the rival (20 m away) is outside, the best (10 m) inside.
+  auto near_origin = [](const TPose2D& rel) { return std::hypot(rel.x, rel.y) < 15; };
+  EXPECT_TRUE(uniqueWithinGate(v, near_origin));
+  // Composed the other way round (offset in the match's frame) the rival would be at (10, 30),
+  // 31.6 m away; a gate that admits (-20, 0) but not (10, 30) tells the two apart.
+  auto left_of_match = [](const TPose2D& rel) { return rel.x < -15 || std::hypot(rel.x, rel.y) < 15; };
+  EXPECT_FALSE(uniqueWithinGate(v, left_of_match));
+  // Not refused for the ambiguity alone, or accepted anyway: nothing to decide.
+  v.ambiguous_only = false;
+  EXPECT_FALSE(uniqueWithinGate(v, near_origin));
+  v.ambiguous_only = true;
+  v.accepted = true;
+  EXPECT_FALSE(uniqueWithinGate(v, near_origin));
 }
 
 TEST(DriftScaleEstimator, RecoversHowMuchMoreTheOdometryDriftsAndIgnoresAFewFalseLoops) {

@@ -113,44 +113,79 @@ void LoopCloser::process(std::uint64_t id) {
         match_cloud = state_.keyframes.at(candidates[c].keyframe).cloud;
       }
       const LoopVerification v = verifyLoop(*cloud, *match_cloud, verifier);
+      std::lock_guard lock(state_.mutex);
+      const std::uint64_t match = candidates[c].keyframe;
+      const TPose2D& q = state_.keyframes[id].pose;
+      const TPose2D estimated = between(state_.keyframes[match].pose, q);
+      std::optional<Eigen::Matrix3d> chain_cov;
+      if (chi2_gate) chain_cov = chainCovarianceTo(match);
+      // The drift gate for a relative pose `rel` of the query in match's frame with information
+      // `information`: the correction it implies (a partial loop: only across its line) and whether
+      // it is within the bound (linear, or chi^2 under the scaled chain covariance).
+      struct Gate {
+        bool pass = true;
+        double dm = 0, da = 0, d2 = 0;
+      };
+      auto driftGate = [&](const TPose2D& rel, const Eigen::Matrix3d& information,
+                           const Eigen::Vector2d* slide_direction) {
+        Gate g;
+        const TPose2D implied = compose(state_.keyframes[match].pose, rel);
+        Eigen::Vector2d correction(implied.x - q.x, implied.y - q.y);
+        if (slide_direction) {
+          const double cs = std::cos(implied.phi), sn = std::sin(implied.phi);
+          const Eigen::Vector2d along(cs * slide_direction->x() - sn * slide_direction->y(),
+                                      sn * slide_direction->x() + cs * slide_direction->y());
+          correction -= correction.dot(along) * along;
+        }
+        g.dm = correction.norm();
+        g.da = std::abs(std::remainder(implied.phi - q.phi, 2 * M_PI));
+        if (chi2_gate) {
+          g.d2 = correctionMahalanobis2(rel, estimated, state_.odometry_variance_scale * *chain_cov,
+                                        information);
+          g.pass = g.d2 <= lc.drift_gate_chi2;
+        } else if (gate) {
+          const auto [bound_m, bound_rad] = driftBound(match);
+          g.pass = g.dm <= bound_m && g.da <= bound_rad;
+        }
+        return g;
+      };
       LoopRecord rec;
       rec.query = id;
-      rec.match = candidates[c].keyframe;
+      rec.match = match;
       rec.descriptor_distance = candidates[c].distance;
-      rec.accepted = v.accepted;
-      rec.reason = v.reason;
       rec.relative = v.relative_pose;
       rec.inlier_ratio = v.inlier_ratio;
       rec.ambiguity_ratio = v.ambiguity_ratio;
       rec.information = loopInformation(v.information, lc);  // what the pose graph is given
-      std::lock_guard lock(state_.mutex);
-      ++state_.stats.loop_candidates;
-      state_.records.push_back(rec);
-      // Where the loop puts the query vs. where the estimate has it.
-      const TPose2D implied = compose(state_.keyframes[rec.match].pose, v.relative_pose);
-      const TPose2D& q = state_.keyframes[id].pose;
-      const double dm = std::hypot(implied.x - q.x, implied.y - q.y);
-      const double da = std::abs(std::remainder(implied.phi - q.phi, 2 * M_PI));
-      const Eigen::Matrix3d& loop_information = rec.information;
-      if (v.accepted && chi2_gate) {
-        const TPose2D estimated = between(state_.keyframes[rec.match].pose, q);
-        const Eigen::Matrix3d chain_cov = chainCovarianceTo(rec.match);
-        drift_scale_.add(correctionMahalanobis2(v.relative_pose, estimated, chain_cov, loop_information));
-        state_.odometry_variance_scale = drift_scale_.scale();
-        const double d2 = correctionMahalanobis2(
-            v.relative_pose, estimated, state_.odometry_variance_scale * chain_cov, loop_information);
-        if (d2 > lc.drift_gate_chi2) {
-          state_.records.back().accepted = false;
-          state_.records.back().reason =
-              "beyond the drift bound (" + std::to_string(dm) + " m, chi2 " + std::to_string(d2) + ")";
-        }
-      } else if (v.accepted && gate) {
-        const auto [bound_m, bound_rad] = driftBound(rec.match);
-        if (dm > bound_m || da > bound_rad) {
-          state_.records.back().accepted = false;
-          state_.records.back().reason = "beyond the drift bound (" + std::to_string(dm) + " m)";
-        }
+      // Ambiguous only through rivals the drift gate would refuse anyway: unique where the loop can be.
+      const bool unique_within_bound =
+          gate && lc.ambiguity_within_drift_bound && uniqueWithinGate(v, [&](const TPose2D& rel) {
+            return driftGate(rel, rec.information, nullptr).pass;
+          });
+      // A partial loop: ambiguous only along one line, every other test passed (accept_slide_loops).
+      rec.slide = !v.accepted && !unique_within_bound && v.ambiguous_only && v.slide &&
+                  lc.accept_slide_loops && anchored;
+      rec.accepted = v.accepted || unique_within_bound || rec.slide;
+      rec.reason = rec.accepted ? "" : v.reason;
+      if (rec.slide) {
+        rec.slide_direction = v.slide_direction;
+        rec.information = slideLoopInformation(rec.information, v.slide_direction);
       }
+      ++state_.stats.loop_candidates;
+      const TPose2D implied = compose(state_.keyframes[match].pose, v.relative_pose);
+      const Eigen::Matrix3d& loop_information = rec.information;
+      if (rec.accepted && chi2_gate && !rec.slide)  // the scale's chi^2(3) model is of full loops
+        drift_scale_.add(correctionMahalanobis2(v.relative_pose, estimated, *chain_cov, loop_information));
+      if (chi2_gate) state_.odometry_variance_scale = drift_scale_.scale();
+      const Gate g = driftGate(v.relative_pose, loop_information, rec.slide ? &rec.slide_direction : nullptr);
+      const double dm = g.dm, da = g.da;
+      if (rec.accepted && !g.pass) {
+        rec.accepted = false;
+        rec.reason = "beyond the drift bound (" + std::to_string(dm) + " m" +
+                     (chi2_gate ? ", chi2 " + std::to_string(g.d2) : std::string()) + ")";
+        rec.slide = false;
+      }
+      state_.records.push_back(rec);
       if (!state_.records.back().accepted) {
         ++state_.stats.loops_rejected;
         continue;

@@ -21,6 +21,21 @@ Eigen::Matrix3d loopInformation(const Eigen::Matrix3d& verifier_information, con
   return cov.inverse();
 }
 
+Eigen::Matrix3d slideLoopInformation(const Eigen::Matrix3d& information, const Eigen::Vector2d& along) {
+  Eigen::Matrix3d cov = (information + 1e-9 * Eigen::Matrix3d::Identity()).inverse();
+  cov.topLeftCorner<2, 2>() += 1e9 * along * along.transpose();
+  const Eigen::Matrix3d out = cov.inverse();
+  return 0.5 * (out + out.transpose());
+}
+
+bool uniqueWithinGate(const LoopVerification& v,
+                      const std::function<bool(const TPose2D& relative)>& within_gate) {
+  if (v.accepted || !v.ambiguous_only) return false;
+  return std::none_of(v.rivals.begin(), v.rivals.end(), [&](const mrpt::math::TPose2D& r) {
+    return within_gate(compose(v.relative_pose, TPose2D(r.x, r.y, r.phi)));
+  });
+}
+
 namespace {
 Eigen::Vector2d perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
 }  // namespace
@@ -90,7 +105,11 @@ double correctionMahalanobis2(const TPose2D& loop_relative, const TPose2D& estim
   const Eigen::Vector3d d(estimated_relative.x - loop_relative.x, estimated_relative.y - loop_relative.y,
                           std::remainder(estimated_relative.phi - loop_relative.phi, 2 * M_PI));
   if (!chain_covariance.allFinite()) return 0;  // across a session start: nothing to test against
-  const Eigen::Matrix3d cov = chain_covariance + loop_information.inverse();
+  // The loop's covariance is in the query's frame (the edge's error); d is in the match's.
+  const double c = std::cos(loop_relative.phi), s = std::sin(loop_relative.phi);
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  R.topLeftCorner<2, 2>() << c, -s, s, c;
+  const Eigen::Matrix3d cov = chain_covariance + R * loop_information.inverse() * R.transpose();
   return d.dot(cov.inverse() * d);
 }
 

@@ -4,8 +4,10 @@
 // accumulated along the keyframe chain, not from constants.
 #include <Eigen/Core>
 
+#include <functional>
 #include <vector>
 
+#include "radarslam/loop/loop_verifier.h"
 #include "radarslam/slam/slam_params.h"
 #include "slam_state.h"
 
@@ -16,6 +18,18 @@ namespace radarslam::slam_detail {
 /// see (a revisit views the place from elsewhere: other speckle, other peaks), diag(loop_sigma^2).
 /// Otherwise diag(1 / loop_sigma^2).
 Eigen::Matrix3d loopInformation(const Eigen::Matrix3d& verifier_information, const LoopClosingParams& params);
+
+/// The information of a partial loop (LoopClosingParams::accept_slide_loops): `information` with
+/// the direction `along` (unit, in the query's frame: that of the edge's error) made unconstrained
+/// (variance 1e9 m^2 added along it, loopInformation's convention).
+Eigen::Matrix3d slideLoopInformation(const Eigen::Matrix3d& information, const Eigen::Vector2d& along);
+
+/// Whether a loop the verifier refused for its ambiguity alone (LoopVerification::ambiguous_only) is
+/// unique among the relative poses the drift gate admits: every rival, as a relative pose
+/// (the verified relative pose composed with the rival's offset), fails `within_gate`
+/// (LoopClosingParams::ambiguity_within_drift_bound).
+bool uniqueWithinGate(const LoopVerification& verification,
+                      const std::function<bool(const TPose2D& relative)>& within_gate);
 
 /// The covariance of keyframe `query`'s pose in an earlier keyframe m's frame when only the
 /// odometry edges between them are known: first-order propagation of the edges' covariances
@@ -65,7 +79,8 @@ class DriftScaleEstimator {
 
 /// The drift gate: the squared Mahalanobis distance between the loop's relative pose and the
 /// current estimate's (both: the query in the match keyframe's frame) under chain + loop
-/// covariance. Compared with chi2(3).
+/// covariance (the loop's, given in the query's frame as the edge's error is, turned into the
+/// match's frame). Compared with chi2(3).
 double correctionMahalanobis2(const TPose2D& loop_relative, const TPose2D& estimated_relative,
                               const Eigen::Matrix3d& chain_covariance,
                               const Eigen::Matrix3d& loop_information);

@@ -44,6 +44,8 @@ void loadParams(const YamlParams& yaml, SlamParams& p) {
   lc.get("loop_sigma_xy_m", p.loop_closing.loop_sigma_xy_m, Range::above(0, 100));
   lc.get("loop_sigma_phi_deg", p.loop_closing.loop_sigma_phi_deg, Range::above(0, 180));
   lc.get("loop_information_estimated", p.loop_closing.loop_information_estimated);
+  lc.get("accept_slide_loops", p.loop_closing.accept_slide_loops);
+  lc.get("ambiguity_within_drift_bound", p.loop_closing.ambiguity_within_drift_bound);
   lc.get("drift_gate_chi2", p.loop_closing.drift_gate_chi2, Range::closed(0, 10000));
   lc.get("drift_base_m", p.loop_closing.drift_base_m, Range::closed(0, 10000.0));
   lc.get("drift_base_deg", p.loop_closing.drift_base_deg, Range::closed(0, 360));

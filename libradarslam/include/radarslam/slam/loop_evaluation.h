@@ -35,6 +35,10 @@ struct LoopEvaluation {
   /// Consistency of the verifier's information over correct accepted loops: NEES = e^T I e of the
   /// (x, y, phi) error; a calibrated estimate has mean 3 and 95 % within chi2(3) 95 % = 7.81.
   double nees_mean = 0, nees_within_95 = 0;
+  /// Partial loops (LoopRecord::slide), judged only on what they constrain (the offset across their
+  /// line and the heading); a false one also counts in false_accepted / false_in_graph. They count
+  /// in neither the recall nor the error and NEES figures above.
+  std::size_t slide_accepted = 0, slide_false = 0;
 };
 
 LoopEvaluation evaluateLoops(const KeyframeMap& map, const std::vector<LoopRecord>& loops,

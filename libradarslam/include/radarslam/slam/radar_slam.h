@@ -32,6 +32,10 @@ struct LoopRecord {
   mrpt::math::TPose2D relative;    ///< query in match's frame (when accepted)
   double inlier_ratio = 0, ambiguity_ratio = 1;
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();  ///< the verifier's estimate, of relative
+  /// A partial loop (LoopClosingParams::accept_slide_loops): `relative` holds across
+  /// slide_direction (a unit vector in the query's frame) and in heading, not along it.
+  bool slide = false;
+  Eigen::Vector2d slide_direction = Eigen::Vector2d::Zero();
 };
 
 struct SlamStats {

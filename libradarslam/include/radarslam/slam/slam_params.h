@@ -87,6 +87,18 @@ struct LoopClosingParams {
   /// true: a loop edge's information is the verifier's estimate (loop/alignment_information.h),
   /// anisotropic where the place is degenerate, instead of the fixed sigmas above.
   bool loop_information_estimated = false;
+  /// A place the verifier finds ambiguous only along one line (loop/loop_verifier.h `slide`: a
+  /// straight featureless wall; not a street that also fits turned by 180 deg; every other test passed)
+  /// becomes a partial loop: its edge constrains the offset across the line and the heading, and along the
+  /// line has the variance of an unconstrained direction (loopInformation's 1e9 m^2). The drift
+  /// gate and the graph's chi^2 test then judge it on what it constrains. Only once the session is
+  /// anchored (a partial loop cannot place a new session in a loaded map).
+  bool accept_slide_loops = false;
+  /// A place the verifier finds ambiguous only because of rivals the drift gate would refuse (every
+  /// rival's relative pose implies a correction beyond the bound; every other test passed) is
+  /// unique where the loop can be, and the loop is accepted (then gated like any other). Needs the
+  /// drift gate (drift_fraction > 0) and an anchored session.
+  bool ambiguity_within_drift_bound = false;
 };
 
 struct SlamParams {
