@@ -131,12 +131,7 @@ void LoopCloser::process(std::uint64_t id) {
         Gate g;
         const TPose2D implied = compose(state_.keyframes[match].pose, rel);
         Eigen::Vector2d correction(implied.x - q.x, implied.y - q.y);
-        if (slide_direction) {
-          const double cs = std::cos(implied.phi), sn = std::sin(implied.phi);
-          const Eigen::Vector2d along(cs * slide_direction->x() - sn * slide_direction->y(),
-                                      sn * slide_direction->x() + cs * slide_direction->y());
-          correction -= correction.dot(along) * along;
-        }
+        if (slide_direction) correction = acrossLine(correction, *slide_direction, implied.phi);
         g.dm = correction.norm();
         g.da = std::abs(std::remainder(implied.phi - q.phi, 2 * M_PI));
         if (chi2_gate) {

@@ -40,13 +40,8 @@ LoopEvaluation evaluateLoops(const KeyframeMap& map, const std::vector<LoopRecor
     if (!l.accepted || l.query >= n || l.match >= n || !truth[l.query] || !truth[l.match]) continue;
     ++ev.accepted;
     const auto g = between(*truth[l.match], *truth[l.query]);
-    Eigen::Vector2d et(l.relative.x - g.x, l.relative.y - g.y);  // in the match's frame
-    if (l.slide) {  // only across the line (slide_direction is in the query's frame)
-      const double c = std::cos(l.relative.phi), s = std::sin(l.relative.phi);
-      const Eigen::Vector2d u(c * l.slide_direction.x() - s * l.slide_direction.y(),
-                              s * l.slide_direction.x() + c * l.slide_direction.y());
-      et -= et.dot(u) * u;
-    }
+    Eigen::Vector2d et(l.relative.x - g.x, l.relative.y - g.y);                        // in the match's frame
+    if (l.slide) et = slam_detail::acrossLine(et, l.slide_direction, l.relative.phi);  // only across
     const double em = et.norm();
     const double ed = std::abs(std::remainder(l.relative.phi - g.phi, 2 * M_PI)) * 180 / M_PI;
     const bool wrong = em > p.max_error_m || ed > p.max_error_deg;

@@ -33,6 +33,13 @@ inline Eigen::Vector2d transformPoint(const TPose2D& a, const Eigen::Vector2d& p
   const double c = std::cos(a.phi), s = std::sin(a.phi);
   return {a.x + c * p.x() - s * p.y(), a.y + s * p.x() + c * p.y()};
 }
+/// `error` without its component along a partial loop's line (LoopRecord::slide): `direction` is a
+/// unit vector in the query's frame, the query at heading `phi` in the frame of `error`.
+inline Eigen::Vector2d acrossLine(const Eigen::Vector2d& error, const Eigen::Vector2d& direction,
+                                  double phi) {
+  const Eigen::Vector2d u = transformPoint(TPose2D(0, 0, phi), direction);
+  return error - error.dot(u) * u;
+}
 inline Eigen::Vector2d inverseTransformPoint(const TPose2D& a, const Eigen::Vector2d& p) {
   const double c = std::cos(a.phi), s = std::sin(a.phi), dx = p.x() - a.x, dy = p.y() - a.y;
   return {c * dx + s * dy, -s * dx + c * dy};
