@@ -15,4 +15,11 @@ Eigen::Matrix3d composeCovariance(const mrpt::math::TPose2D& a, const Eigen::Mat
   return ja * cov_a * ja.transpose() + jb * cov_b * jb.transpose();
 }
 
+Eigen::Matrix3d rotateCovariance(const Eigen::Matrix3d& cov, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+  r(0, 0) = c, r(0, 1) = -s, r(1, 0) = s, r(1, 1) = c;
+  return r * cov * r.transpose();
+}
+
 }  // namespace radarslam

@@ -8,6 +8,7 @@
 #include "graph_optimiser.h"
 #include "loop_uncertainty.h"
 #include "radarslam/core/log.h"
+#include "radarslam/core/se2_covariance.h"
 #include "radarslam/loop/loop_verifier.h"
 
 namespace radarslam::slam_detail {
@@ -70,10 +71,8 @@ void LoopCloser::process(std::uint64_t id) {
   auto chainCovarianceTo = [&](std::uint64_t m) -> Eigen::Matrix3d {
     if (m >= state_.session_first) return chain->relativeTo(m);
     const std::uint64_t a = state_.anchor_keyframe;
-    const double dphi = state_.keyframes[a].pose.phi - state_.keyframes[m].pose.phi;
-    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-    R.topLeftCorner<2, 2>() << std::cos(dphi), -std::sin(dphi), std::sin(dphi), std::cos(dphi);
-    return R * chain->relativeTo(a) * R.transpose();
+    return rotateCovariance(chain->relativeTo(a),
+                            state_.keyframes[a].pose.phi - state_.keyframes[m].pose.phi);
   };
   bool optimise = false, closed = false;
   if ((params_.loop_closing.enabled || !anchored) && descriptors[0].size() > 0) {

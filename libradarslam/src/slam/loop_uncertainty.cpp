@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "graph_optimiser.h"
+#include "radarslam/core/se2_covariance.h"
 
 namespace radarslam::slam_detail {
 
@@ -106,10 +107,8 @@ double correctionMahalanobis2(const TPose2D& loop_relative, const TPose2D& estim
                           std::remainder(estimated_relative.phi - loop_relative.phi, 2 * M_PI));
   if (!chain_covariance.allFinite()) return 0;  // across a session start: nothing to test against
   // The loop's covariance is in the query's frame (the edge's error); d is in the match's.
-  const double c = std::cos(loop_relative.phi), s = std::sin(loop_relative.phi);
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  R.topLeftCorner<2, 2>() << c, -s, s, c;
-  const Eigen::Matrix3d cov = chain_covariance + R * loop_information.inverse() * R.transpose();
+  const Eigen::Matrix3d cov =
+      chain_covariance + rotateCovariance(loop_information.inverse(), loop_relative.phi);
   return d.dot(cov.inverse() * d);
 }
 

@@ -10,4 +10,8 @@ namespace radarslam {
 Eigen::Matrix3d composeCovariance(const mrpt::math::TPose2D& a, const Eigen::Matrix3d& cov_a,
                                   const mrpt::math::TPose2D& b, const Eigen::Matrix3d& cov_b);
 
+/// The covariance of an (x, y, phi) error expressed in a frame rotated by `angle`: R cov R^T with
+/// R rotating the (x, y) block (e.g. a covariance in the query's frame moved into the map's).
+Eigen::Matrix3d rotateCovariance(const Eigen::Matrix3d& cov, double angle);
+
 }  // namespace radarslam
