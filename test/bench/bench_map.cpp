@@ -85,6 +85,22 @@ void BM_ExportGrid(benchmark::State& state) {
 }
 BENCHMARK(BM_ExportGrid)->Arg(1000)->Unit(benchmark::kMillisecond);
 
+// The ray casting alone (buildOccupancy), which the grid and OctoMap layers, the exports and the
+// map server share; its cells are the grid's width x height (bytes per cell: map_exports.h).
+void BM_BuildOccupancy(benchmark::State& state) {
+  const KeyframeMap map = bigMap(static_cast<int>(state.range(0)), 1500);
+  std::size_t cells = 0;
+  for (auto _ : state) {
+    const OccupancyRaster r = buildOccupancy(map);
+    cells = r.p_occupied.size();
+    benchmark::DoNotOptimize(r.p_occupied.data());
+  }
+  state.counters["keyframes/s"] = benchmark::Counter(static_cast<double>(state.iterations() * state.range(0)),
+                                                     benchmark::Counter::kIsRate);
+  state.counters["Mcells"] = static_cast<double>(cells) / 1e6;
+}
+BENCHMARK(BM_BuildOccupancy)->Arg(1000)->Unit(benchmark::kMillisecond);
+
 // OctoMap layer (.bt + .ot), both fills (map_exports.h): keyframes/s is the issue-16 figure.
 void BM_ExportOctomap(benchmark::State& state, OctomapExportParams::Fill fill) {
   const KeyframeMap map = bigMap(static_cast<int>(state.range(0)), 1500);

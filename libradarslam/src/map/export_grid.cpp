@@ -56,6 +56,46 @@ double fittingGridResolution(const KeyframeMap& map, const GridExportParams& par
       return k * params.resolution_m;
 }
 
+namespace {
+// The cells one keyframe's rays touch, in a window over that keyframe's footprint, with a hit and
+// a miss flag each: de-duplicates the keyframe's hits and misses without per-cell stamps over the
+// whole map. Only the touched entries are cleared between keyframes (clear), so the cost is the
+// rays', not the window's area.
+class KeyframeWindow {
+ public:
+  static constexpr std::uint8_t kHit = 1, kMiss = 2;
+  void reset(int col, int row) { c_min_ = c_max_ = col, r_min_ = r_max_ = row; }
+  void grow(int col, int row) {
+    c_min_ = std::min(c_min_, col), c_max_ = std::max(c_max_, col);
+    r_min_ = std::min(r_min_, row), r_max_ = std::max(r_max_, row);
+  }
+  void allocate() {
+    w_ = c_max_ - c_min_ + 1;
+    const std::size_t n = static_cast<std::size_t>(w_) * (r_max_ - r_min_ + 1);
+    if (flags_.size() < n) flags_.resize(n, 0);
+  }
+  std::size_t index(int col, int row) const {
+    return static_cast<std::size_t>(row - r_min_) * w_ + static_cast<std::size_t>(col - c_min_);
+  }
+  int col(std::size_t i) const { return c_min_ + static_cast<int>(i % w_); }
+  int row(std::size_t i) const { return r_min_ + static_cast<int>(i / w_); }
+  /// Sets flag f of entry i; true when it was not set before.
+  bool mark(std::size_t i, std::uint8_t f) {
+    if (flags_[i] & f) return false;
+    flags_[i] |= f;
+    return true;
+  }
+  bool has(std::size_t i, std::uint8_t f) const { return (flags_[i] & f) != 0; }
+  void clear(const std::vector<std::size_t>& touched) {
+    for (std::size_t i : touched) flags_[i] = 0;
+  }
+
+ private:
+  int c_min_ = 0, c_max_ = 0, r_min_ = 0, r_max_ = 0, w_ = 1;
+  std::vector<std::uint8_t> flags_;
+};
+}  // namespace
+
 OccupancyRaster buildOccupancy(const KeyframeMap& map, const GridExportParams& params) {
   if (!(params.resolution_m > 0)) throw InputError("grid export", "resolution must be > 0");
   const double res = params.resolution_m;
@@ -75,71 +115,87 @@ OccupancyRaster buildOccupancy(const KeyframeMap& map, const GridExportParams& p
   out.width = static_cast<int>(w);
   out.height = static_cast<int>(h);
   const std::size_t cells = static_cast<std::size_t>(out.width) * out.height;
+  // Five bytes per cell: the log-odds (turned into the probability in place at the end) and the
+  // observed flag.
   std::vector<float> log_odds(cells, 0.f);
-  std::vector<std::uint32_t> hit_stamp(cells, 0), miss_stamp(cells, 0);
+  out.observed.assign(cells, 0);
 
   const std::uint32_t sectors = std::max<std::uint32_t>(map.meta.sensor.num_azimuths, 1);
   std::vector<float> nearest(sectors);
-  std::vector<std::pair<double, double>> nearest_xy(sectors);
-  std::vector<std::size_t> misses, hits;
+  std::vector<std::pair<int, int>> nearest_cell(sectors), point_cells;
+  KeyframeWindow window;
+  std::vector<std::size_t> misses, hits;  // window indices, each once
   auto cellOf = [&](double x, double y, int& col, int& row) {
     col = static_cast<int>(std::floor((x - out.x_min) / res));
     row = static_cast<int>(std::floor((y - out.y_min) / res));
     return col >= 0 && row >= 0 && col < out.width && row < out.height;
   };
-  std::uint32_t stamp = 0;
+  auto gridIndex = [&](std::size_t i, std::size_t& g) {  // false outside the grid
+    const int col = window.col(i), row = window.row(i);
+    g = static_cast<std::size_t>(row) * out.width + col;
+    return col >= 0 && row >= 0 && col < out.width && row < out.height;
+  };
+  const auto clamp = static_cast<float>(params.log_odds_clamp);
   for (const auto& kf : map.keyframes) {
-    ++stamp;
+    int c0, r0;
+    if (!cellOf(kf.pose.x, kf.pose.y, c0, r0)) continue;
+    window.clear(misses);
+    window.clear(hits);
     misses.clear();
     hits.clear();
+    point_cells.clear();
+    window.reset(c0, r0);
     std::fill(nearest.begin(), nearest.end(), std::numeric_limits<float>::infinity());
     const double c = std::cos(kf.pose.phi), s = std::sin(kf.pose.phi);
     for (const auto& p : kf.points) {
       const double wx = kf.pose.x + c * p.x - s * p.y, wy = kf.pose.y + s * p.x + c * p.y;
       int col, row;
-      if (cellOf(wx, wy, col, row)) {
-        const std::size_t i = static_cast<std::size_t>(row) * out.width + col;
-        if (hit_stamp[i] != stamp) hit_stamp[i] = stamp, hits.push_back(i);
-      }
+      if (cellOf(wx, wy, col, row)) point_cells.emplace_back(col, row);
+      window.grow(col, row);
       double a = std::atan2(p.y, p.x);
       if (a < 0) a += 2 * M_PI;
       const auto sector =
           std::min<std::uint32_t>(static_cast<std::uint32_t>(a / (2 * M_PI) * sectors), sectors - 1);
       const float r = std::hypot(p.x, p.y);
-      if (r < nearest[sector]) nearest[sector] = r, nearest_xy[sector] = {wx, wy};
+      if (r < nearest[sector]) nearest[sector] = r, nearest_cell[sector] = {col, row};
     }
-    // Free space: cells from the sensor up to (excluding) the nearest return of each sector.
-    int c0, r0;
-    if (!cellOf(kf.pose.x, kf.pose.y, c0, r0)) continue;
+    window.allocate();
+    for (const auto& [col, row] : point_cells)
+      if (const std::size_t i = window.index(col, row); window.mark(i, KeyframeWindow::kHit))
+        hits.push_back(i);
+    // Free space: cells from the sensor up to (excluding) the nearest return of each sector. The
+    // segment joins two cells of the window, so each of its cells is in the window too.
     for (std::uint32_t k = 0; k < sectors; ++k) {
       if (!std::isfinite(nearest[k])) continue;
-      int c1, r1;
-      cellOf(nearest_xy[k].first, nearest_xy[k].second, c1, r1);
+      const auto [c1, r1] = nearest_cell[k];
       // Bresenham from (c0, r0) to (c1, r1), excluding the end cell.
       int x = c0, y = r0;
       const int dx = std::abs(c1 - c0), dy = -std::abs(r1 - r0), sx = c0 < c1 ? 1 : -1, sy = r0 < r1 ? 1 : -1;
       int err = dx + dy;
       while (!(x == c1 && y == r1)) {
-        if (x >= 0 && y >= 0 && x < out.width && y < out.height) {
-          const std::size_t i = static_cast<std::size_t>(y) * out.width + x;
-          if (miss_stamp[i] != stamp) miss_stamp[i] = stamp, misses.push_back(i);
-        }
+        if (const std::size_t i = window.index(x, y); window.mark(i, KeyframeWindow::kMiss))
+          misses.push_back(i);
         const int e2 = 2 * err;
         if (e2 >= dy) err += dy, x += sx;
         if (e2 <= dx) err += dx, y += sy;
       }
     }
-    const auto clamp = static_cast<float>(params.log_odds_clamp);
-    for (std::size_t i : misses)
-      if (hit_stamp[i] != stamp)  // a cell with a return in this keyframe is not also free in it
-        log_odds[i] = std::max(-clamp, log_odds[i] + static_cast<float>(params.log_odds_miss));
-    for (std::size_t i : hits)
-      log_odds[i] = std::min(clamp, log_odds[i] + static_cast<float>(params.log_odds_hit));
+    std::size_t g;
+    for (std::size_t i : misses) {
+      if (!gridIndex(i, g)) continue;
+      out.observed[g] = 1;
+      if (!window.has(i,
+                      KeyframeWindow::kHit))  // a cell with a return in this keyframe is not also free in it
+        log_odds[g] = std::max(-clamp, log_odds[g] + static_cast<float>(params.log_odds_miss));
+    }
+    for (std::size_t i : hits) {
+      gridIndex(i, g);  // hits are grid cells
+      out.observed[g] = 1;
+      log_odds[g] = std::min(clamp, log_odds[g] + static_cast<float>(params.log_odds_hit));
+    }
   }
-  out.observed.resize(cells);
-  for (std::size_t i = 0; i < cells; ++i) out.observed[i] = hit_stamp[i] != 0 || miss_stamp[i] != 0;
-  out.p_occupied.resize(cells);
-  for (std::size_t i = 0; i < cells; ++i) out.p_occupied[i] = 1.f / (1.f + std::exp(-log_odds[i]));
+  for (float& v : log_odds) v = 1.f / (1.f + std::exp(-v));
+  out.p_occupied = std::move(log_odds);
   return out;
 }
 

@@ -39,7 +39,7 @@ struct OccupancyRaster {
 /// per azimuth, all of them are obstacles; the space beyond the first one is not known to be free).
 OccupancyRaster buildOccupancy(const KeyframeMap& map, const GridExportParams& params = {});
 
-/// Cells a tiled grid layer may have: 1e9 (40 km² at 0.2 m; building it takes ~17 bytes per cell).
+/// Cells a tiled grid layer may have: 1e9 (40 km² at 0.2 m; building it takes 5 bytes per cell).
 inline constexpr std::size_t kMaxLayerGridCells = 1'000'000'000;
 
 /// The smallest multiple of params.resolution_m at which the map's grid has at most
