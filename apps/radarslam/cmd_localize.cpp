@@ -399,6 +399,11 @@ int runLocalize(int argc, char** argv) {
       fixes, degraded_fixes, contested_fixes, fixes + degraded_fixes > 0 ? fixes + degraded_fixes - 1 : 0,
       first_fix, first_trusted);
   std::printf("  median fit     %.3f (inlier ratio of the localised scans)\n", median(fits));
+  std::printf("  model error    %.3f m, %.3f deg added to each registration's covariance (%s)\n",
+              localizer.registrationModel().position_sigma_floor_m,
+              localizer.registrationModel().heading_sigma_floor_deg,
+              map.meta.clouds_motion_compensated ? "a SLAM map: tracker.icp.slam_map_*_sigma_floor_*"
+                                                 : "a map of raw sweeps: tracker.icp.*_sigma_floor_*");
   std::printf(
       "  speed          %.1f scans/s (%.1f ms/scan: odometry %.1f, cloud %.1f, tracking %.1f, global %.1f); "
       "map "

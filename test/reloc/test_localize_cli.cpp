@@ -110,6 +110,10 @@ TEST(LocalizeCli, SecondTraversalOfSimulatedWorld) {
   EXPECT_LT(head[head.size() / 2], 1.0) << log;
   EXPECT_LT(pos.back(), 5.0) << log;  // nothing reported as localised is far off
   EXPECT_NE(log.find("absolute gt/poses.tum"), std::string::npos) << log;
+  EXPECT_NE(
+      log.find("model error    0.000 m, 0.250 deg added to each registration's covariance (a map of raw"),
+      std::string::npos)
+      << log;
   // The map frame is fitted to the truth at the map's keyframes: exact for a map-synth map.
   const auto fit = log.find("residual RMS ");
   ASSERT_NE(fit, std::string::npos) << log;
@@ -141,6 +145,12 @@ TEST(LocalizeCli, InASlamMapTheCompensatedCloudsAreUsedAsStored) {
   }
   // Issue 14's target is 95 % of the scans; measured 125 of 130 (double compensation: 84).
   EXPECT_GE(good, kScans * 9 / 10) << slurp(d / "loc.log");
+  // The summary says which model errors the covariance got: a SLAM map's.
+  EXPECT_NE(
+      slurp(d / "loc.log")
+          .find("model error    0.035 m, 0.140 deg added to each registration's covariance (a SLAM map"),
+      std::string::npos)
+      << slurp(d / "loc.log");
 }
 
 TEST(LocalizeCli, MissingMapIsOneLineError) {

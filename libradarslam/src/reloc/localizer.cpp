@@ -148,6 +148,7 @@ Localizer::Localizer(const KeyframeMap& map, const OdometryParams& odometry, con
 Localizer::~Localizer() = default;
 
 std::size_t Localizer::globalFixes() const { return impl_->fixes; }
+const IcpParams& Localizer::registrationModel() const { return impl_->tracker.params().icp; }
 
 LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
   Impl& m = *impl_;

@@ -141,6 +141,9 @@ class Localizer {
 
   /// Global fixes so far (the first one included).
   std::size_t globalFixes() const;
+  /// The registration's parameters in use, with the model errors for this kind of map
+  /// (IcpParams::*_sigma_floor_*: raw sweeps or SLAM clouds).
+  const IcpParams& registrationModel() const;
 
  private:
   struct Impl;
