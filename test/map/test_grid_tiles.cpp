@@ -166,6 +166,24 @@ TEST(GridTiles, SavedTiledCloudIsSortedByTileAndServedTileByTile) {
     return r;
   };
   EXPECT_TRUE(records(got) == records(expected));
+  // And in order: the keyframe-order payload sorted stably by tile, byte for byte.
+  std::vector<std::size_t> order(expected.size() / 16);
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  auto keyOf = [&](std::size_t i) {
+    float xy[2];
+    std::memcpy(xy, expected.data() + 16 * i, sizeof xy);
+    return cloudTileKey(layers.tiling, res, layers.grid_origin_x, layers.grid_origin_y, xy[0], xy[1]);
+  };
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return keyOf(a) < keyOf(b); });
+  std::vector<std::uint8_t> stably_sorted;
+  for (const std::size_t i : order)
+    stably_sorted.insert(stably_sorted.end(), expected.begin() + 16 * i, expected.begin() + 16 * (i + 1));
+  EXPECT_TRUE(got == stably_sorted);
+  const TiledCloud direct =
+      tiledCloudPayload(map, layers.tiling, res, layers.grid_origin_x, layers.grid_origin_y);
+  EXPECT_TRUE(direct.data == stably_sorted);
+  EXPECT_EQ(direct.tiles, index);
   // A hostile index: ranges that do not add up are rejected naming the file.
   const std::string text = cloudTileIndexText(index);
   EXPECT_THROW(parseCloudTileIndex(text, layers.tiling, layers.cloud_points + 1, "c"), InputError);

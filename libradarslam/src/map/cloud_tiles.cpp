@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "radarslam/core/errors.h"
+#include "radarslam/map/layer_files.h"
 #include "radarslam/map/sha256.h"
 
 namespace radarslam {
@@ -27,25 +28,29 @@ std::uint32_t cloudTileKey(const GridTiling& t, double resolution, double origin
                    clampIndex(std::floor((y - origin_y) / tile_m), t.tiles_y));
 }
 
-std::vector<CloudTileEntry> sortCloudByTile(std::vector<std::uint8_t>& data, const GridTiling& t,
-                                            double resolution, double origin_x, double origin_y) {
-  const std::size_t n = data.size() / kPointBytes;
+TiledCloud tiledCloudPayload(const KeyframeMap& map, const GridTiling& t, double resolution, double origin_x,
+                             double origin_y) {
   const std::size_t tiles = std::size_t{t.tiles_x} * t.tiles_y;
-  std::vector<std::uint32_t> key(n);
   std::vector<std::uint64_t> start(tiles + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    float xy[2];
-    std::memcpy(xy, data.data() + i * kPointBytes, sizeof xy);
-    key[i] = cloudTileKey(t, resolution, origin_x, origin_y, xy[0], xy[1]);
-    ++start[key[i] + 1];
-  }
+  // Both passes compute each record the same way (cloudRecord), so the keys agree.
+  auto forEachRecord = [&](auto&& f) {
+    for (const auto& kf : map.keyframes) {
+      const double c = std::cos(kf.pose.phi), s = std::sin(kf.pose.phi);
+      for (const auto& p : kf.points) {
+        float v[4];
+        cloudRecord(kf, c, s, p, v);
+        f(v, cloudTileKey(t, resolution, origin_x, origin_y, v[0], v[1]));
+      }
+    }
+  };
+  forEachRecord([&](const float*, std::uint32_t key) { ++start[key + 1]; });
   for (std::size_t k = 0; k < tiles; ++k) start[k + 1] += start[k];
-  std::vector<std::uint8_t> sorted(data.size());
+  TiledCloud out;
+  out.data.resize(start[tiles] * kPointBytes);
   std::vector<std::uint64_t> next(start.begin(), start.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)  // counting sort: stable
-    std::memcpy(sorted.data() + next[key[i]]++ * kPointBytes, data.data() + i * kPointBytes, kPointBytes);
-  data.swap(sorted);
-  std::vector<CloudTileEntry> index;
+  forEachRecord([&](const float* v, std::uint32_t key) {  // counting sort: stable
+    std::memcpy(out.data.data() + next[key]++ * kPointBytes, v, kPointBytes);
+  });
   for (std::size_t k = 0; k < tiles; ++k) {
     const std::uint64_t count = start[k + 1] - start[k];
     if (count == 0) continue;
@@ -54,10 +59,10 @@ std::vector<CloudTileEntry> sortCloudByTile(std::vector<std::uint8_t>& data, con
     e.ty = static_cast<std::uint32_t>(k / t.tiles_x);
     e.first = start[k];
     e.count = count;
-    e.sha256 = sha256Hex({data.data() + e.first * kPointBytes, count * kPointBytes});
-    index.push_back(std::move(e));
+    e.sha256 = sha256Hex({out.data.data() + e.first * kPointBytes, count * kPointBytes});
+    out.tiles.push_back(std::move(e));
   }
-  return index;
+  return out;
 }
 
 std::string cloudTileIndexText(const std::vector<CloudTileEntry>& tiles) {

@@ -104,9 +104,8 @@ std::vector<std::uint8_t> cloudPayload(const KeyframeMap& map) {
   for (const auto& kf : map.keyframes) {
     const double c = std::cos(kf.pose.phi), s = std::sin(kf.pose.phi);
     for (const auto& p : kf.points) {
-      // Same arithmetic as dds::cloudMessage and exportPointCloud: identical floats.
-      const float v[4] = {static_cast<float>(kf.pose.x + c * p.x - s * p.y),
-                          static_cast<float>(kf.pose.y + s * p.x + c * p.y), 0.f, p.power};
+      float v[4];
+      cloudRecord(kf, c, s, p, v);
       std::memcpy(data.data() + at, v, sizeof v);  // little-endian host
       at += sizeof v;
     }

@@ -134,16 +134,46 @@ MapLayersManifest writeMapLayers(const KeyframeMap& map, const fs::path& map_dir
     }
   }
 
+  // The OctoMap before the cloud, so that the grid's raster (which it is made from when the fill
+  // and resolution allow) is freed before the cloud's payload is built; its entry still follows
+  // the cloud's in the manifest.
   const bool share = params.octomap.fill == OctomapExportParams::Fill::grid_columns &&
                      params.octomap.resolution_m == params.grid.resolution_m;
   if (!share) raster.reset();
+  LayerFileEntry octomap_entry;
+  {
+    std::string bt;
+    if (params.octomap.fill == OctomapExportParams::Fill::grid_columns) {
+      if (!raster) {
+        GridExportParams g = grid_params;
+        g.resolution_m = params.octomap.resolution_m;
+        raster = buildOccupancy(map, g);
+      }
+      OctomapSlabParams slab_params;
+      slab_params.full_data = false;
+      bt = octomapBinaryFile(encodeOctomapSlab(*raster, slab_params));
+      raster.reset();
+    } else {  // point_rays: the exporter writes map.bt (and map.ot, not a layer) into the directory
+      exportOctomap(map, dir, "map", params.octomap);
+      fs::remove(dir / "map.ot", ec);
+      std::ifstream in(dir / kOctomapLayerFile, std::ios::binary);
+      std::ostringstream ss;
+      ss << in.rdbuf();
+      bt = ss.str();
+    }
+    writeSynced(dir / kOctomapLayerFile, {bt});
+    octomap_entry = entry("octomap", prefix + kOctomapLayerFile, bt);
+  }
 
   {
-    std::vector<std::uint8_t> data = cloudPayload(map);
-    m.cloud_points = data.size() / 16;
-    std::vector<CloudTileEntry> tiles;  // a tiled grid: the cloud sorted along the same tiles
+    // A tiled grid: the cloud sorted along the same tiles, built in that order.
+    TiledCloud cloud;
     if (m.tiling.tiled())
-      tiles = sortCloudByTile(data, m.tiling, params.grid.resolution_m, m.grid_origin_x, m.grid_origin_y);
+      cloud = tiledCloudPayload(map, m.tiling, params.grid.resolution_m, m.grid_origin_x, m.grid_origin_y);
+    else
+      cloud.data = cloudPayload(map);
+    const std::vector<std::uint8_t>& data = cloud.data;
+    m.cloud_points = data.size() / 16;
     const std::string header = cloudPcdHeader(m.cloud_points);
     writeSynced(dir / kCloudLayerFile, {header, {reinterpret_cast<const char*>(data.data()), data.size()}});
     Sha256 sha;
@@ -152,33 +182,12 @@ MapLayersManifest writeMapLayers(const KeyframeMap& map, const fs::path& map_dir
     m.files.push_back({"cloud", prefix + kCloudLayerFile, header.size() + data.size(), sha.hexDigest()});
     if (m.tiling.tiled()) {
       m.cloud_data_sha256 = sha256Hex({data.data(), data.size()});
-      const std::string index = std::string(kCloudTilesHeader) + "\n" + cloudTileIndexText(tiles);
+      const std::string index = std::string(kCloudTilesHeader) + "\n" + cloudTileIndexText(cloud.tiles);
       writeSynced(dir / kCloudTilesLayerFile, {index});
       m.files.push_back(entry("cloud_tiles", prefix + kCloudTilesLayerFile, index));
     }
   }
-
-  std::string bt;
-  if (params.octomap.fill == OctomapExportParams::Fill::grid_columns) {
-    if (!raster) {
-      GridExportParams g = grid_params;
-      g.resolution_m = params.octomap.resolution_m;
-      raster = buildOccupancy(map, g);
-    }
-    OctomapSlabParams slab_params;
-    slab_params.full_data = false;
-    bt = octomapBinaryFile(encodeOctomapSlab(*raster, slab_params));
-    raster.reset();
-  } else {  // point_rays: the exporter writes map.bt (and map.ot, not a layer) into the directory
-    exportOctomap(map, dir, "map", params.octomap);
-    fs::remove(dir / "map.ot", ec);
-    std::ifstream in(dir / kOctomapLayerFile, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    bt = ss.str();
-  }
-  writeSynced(dir / kOctomapLayerFile, {bt});
-  m.files.push_back(entry("octomap", prefix + kOctomapLayerFile, bt));
+  m.files.push_back(std::move(octomap_entry));
   return m;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "radarslam/map/grid_tiles.h"
+#include "radarslam/map/keyframe_map.h"
 
 namespace radarslam {
 
@@ -24,10 +25,15 @@ struct CloudTileEntry {
 std::uint32_t cloudTileKey(const GridTiling& tiling, double resolution, double origin_x, double origin_y,
                            float x, float y);
 
-/// Sorts a cloud payload (16-byte records x y z intensity) by tile, stably, and returns the index
-/// of the tiles holding points. `data` is reordered in place.
-std::vector<CloudTileEntry> sortCloudByTile(std::vector<std::uint8_t>& data, const GridTiling& tiling,
-                                            double resolution, double origin_x, double origin_y);
+/// The cloud payload (cloudPayload's 16-byte records x y z intensity) already sorted by tile,
+/// stably (within a tile in keyframe order), and the index of the tiles holding points. Written
+/// in place in two passes over the keyframes: no second copy of the payload.
+struct TiledCloud {
+  std::vector<std::uint8_t> data;
+  std::vector<CloudTileEntry> tiles;
+};
+TiledCloud tiledCloudPayload(const KeyframeMap& map, const GridTiling& tiling, double resolution,
+                             double origin_x, double origin_y);
 
 /// layers/cloud_tiles.txt after its first line: "tx ty first count sha256" per tile, in order.
 std::string cloudTileIndexText(const std::vector<CloudTileEntry>& tiles);

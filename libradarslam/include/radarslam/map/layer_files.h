@@ -46,6 +46,15 @@ std::string cloudPcd(const KeyframeMap& map, std::uint64_t* points);
 std::string cloudPcdHeader(std::uint64_t points);
 /// The data section of cloudPcd: 16 bytes (x y z intensity) per keyframe point, keyframe order.
 std::vector<std::uint8_t> cloudPayload(const KeyframeMap& map);
+/// One point's record of that payload: x, y in the map frame, z = 0, intensity = power, given
+/// c = cos(kf.pose.phi), s = sin(kf.pose.phi) (same arithmetic as dds::cloudMessage and
+/// exportPointCloud: identical floats).
+inline void cloudRecord(const Keyframe& kf, double c, double s, const KeyframePoint& p, float out[4]) {
+  out[0] = static_cast<float>(kf.pose.x + c * p.x - s * p.y);
+  out[1] = static_cast<float>(kf.pose.y + s * p.x + c * p.y);
+  out[2] = 0.f;
+  out[3] = p.power;
+}
 
 /// Grid cells of layers/grid.pgm (checked against `entry` and the manifest's geometry).
 std::vector<std::int8_t> readGridLayer(const std::filesystem::path& map_dir, const MapLayersManifest& layers);
