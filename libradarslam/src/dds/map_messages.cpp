@@ -104,20 +104,8 @@ PointCloud2Msg cloudMessage(const KeyframeMap& map, StampNs stamp) {
   m.header = mapHeader(stamp);
   m.fields = {{"x", 0}, {"y", 4}, {"z", 8}, {"intensity", 12}};
   m.point_step = 16;
-  std::size_t n = 0;
-  for (const auto& kf : map.keyframes) n += kf.points.size();
-  m.data.resize(n * 16);
-  std::uint8_t* out = m.data.data();
-  for (const auto& kf : map.keyframes) {
-    const double c = std::cos(kf.pose.phi), s = std::sin(kf.pose.phi);
-    for (const auto& p : kf.points) {
-      // Same arithmetic as exportPointCloud (map/export_cloud.cpp), so both give identical floats.
-      const float v[4] = {static_cast<float>(kf.pose.x + c * p.x - s * p.y),
-                          static_cast<float>(kf.pose.y + s * p.x + c * p.y), 0.f, p.power};
-      std::memcpy(out, v, sizeof v);  // little-endian host
-      out += sizeof v;
-    }
-  }
+  m.data = cloudPayload(map);  // the cloud layer's records (map/layer_files.h)
+  const std::size_t n = m.data.size() / 16;
   m.width = static_cast<std::uint32_t>(n);
   m.row_step = m.width * m.point_step;
   return m;

@@ -184,8 +184,8 @@ OccupancyRaster buildOccupancy(const KeyframeMap& map, const GridExportParams& p
     for (std::size_t i : misses) {
       if (!gridIndex(i, g)) continue;
       out.observed[g] = 1;
-      if (!window.has(i,
-                      KeyframeWindow::kHit))  // a cell with a return in this keyframe is not also free in it
+      // A cell with a return in this keyframe is not also free in it.
+      if (!window.has(i, KeyframeWindow::kHit))
         log_odds[g] = std::max(-clamp, log_odds[g] + static_cast<float>(params.log_odds_miss));
     }
     for (std::size_t i : hits) {

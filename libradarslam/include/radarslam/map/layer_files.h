@@ -47,8 +47,8 @@ std::string cloudPcdHeader(std::uint64_t points);
 /// The data section of cloudPcd: 16 bytes (x y z intensity) per keyframe point, keyframe order.
 std::vector<std::uint8_t> cloudPayload(const KeyframeMap& map);
 /// One point's record of that payload: x, y in the map frame, z = 0, intensity = power, given
-/// c = cos(kf.pose.phi), s = sin(kf.pose.phi) (same arithmetic as dds::cloudMessage and
-/// exportPointCloud: identical floats).
+/// c = cos(kf.pose.phi), s = sin(kf.pose.phi). Every cloud writer goes through it (cloudPayload:
+/// the layer, exportPointCloud, dds::cloudMessage; tiledCloudPayload), so all give identical floats.
 inline void cloudRecord(const Keyframe& kf, double c, double s, const KeyframePoint& p, float out[4]) {
   out[0] = static_cast<float>(kf.pose.x + c * p.x - s * p.y);
   out[1] = static_cast<float>(kf.pose.y + s * p.x + c * p.y);
