@@ -10,9 +10,7 @@ Eigen::Matrix3d composeCovariance(const mrpt::math::TPose2D& a, const Eigen::Mat
   Eigen::Matrix3d ja = Eigen::Matrix3d::Identity();
   ja(0, 2) = -s * b.x - c * b.y;
   ja(1, 2) = c * b.x - s * b.y;
-  Eigen::Matrix3d jb = Eigen::Matrix3d::Identity();
-  jb(0, 0) = c, jb(0, 1) = -s, jb(1, 0) = s, jb(1, 1) = c;
-  return ja * cov_a * ja.transpose() + jb * cov_b * jb.transpose();
+  return ja * cov_a * ja.transpose() + rotateCovariance(cov_b, a.phi);  // b's Jacobian: a's rotation
 }
 
 Eigen::Matrix3d rotateCovariance(const Eigen::Matrix3d& cov, double angle) {
