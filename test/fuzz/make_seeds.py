@@ -4,6 +4,8 @@
 seeds/rawlog/ is not written here: one_scan_gz.rawlog is `radarslam convert` of a one-scan Oxford
 folder holding seeds/polar_png_oxford/oxford.png, one_scan_plain.rawlog the same decompressed
 (MRPT reads plain and gzip rawlogs; mutations of the plain one reach the deserializer).
+frame_with_scan_and_nullptr.rawlog is written here from the plain one: the same scan inside an
+mrpt::obs::CSensoryFrame, then a nullptr object (the other two entry forms the reader accepts).
 
 Our own data only (never copied from a dataset): small valid examples of every format so the
 fuzzer starts from inputs that pass the first checks. scripts/fuzz.sh adds the real files from
@@ -145,3 +147,15 @@ put("yaml_params", "deep_nesting.yaml",
     "x: " + "[" * 70 + "]" * 70 + "\n" +
     "y: " + "{a: " * 40 + "1" + "}" * 40 + "\n" +
     "".join(" " * i + "z:\n" for i in range(70)) + " " * 70 + "w: 1\n")
+
+
+def sensory_frame_seed():
+    """MRPT's layout: 0x80 | name length, class name, version byte, body, end flag 0x88."""
+    with open(os.path.join(HERE, "seeds", "rawlog", "one_scan_plain.rawlog"), "rb") as f:
+        scan = f.read()
+    name = b"mrpt::obs::CSensoryFrame"
+    null_object = bytes([0x80 | 7]) + b"nullptr" + b"\x88"
+    return bytes([0x80 | len(name)]) + name + b"\x02" + struct.pack("<I", 2) + scan + null_object + b"\x88"
+
+
+put("rawlog", "frame_with_scan_and_nullptr.rawlog", sensory_frame_seed())
