@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <unordered_set>
 
 #include "radarslam/slam/local_bundle_adjustment.h"
 
@@ -138,11 +139,12 @@ void LocalMapper::bundleAdjust(std::uint64_t newest) {
     };
     // The oldest window keyframe is fixed when nothing outside the window anchors the window.
     for (std::uint64_t id = first; id <= newest; ++id) addPose(id, id == first);
-    std::vector<char> seen(state_.points.size(), 0);
+    // The window's points in order of first sight. A set of the window's points, not a flag per
+    // map point: that one was zeroed per BA, O(map size) each time, quadratic over a long run.
+    std::unordered_set<std::int64_t> seen;
     for (std::uint64_t id = first; id <= newest; ++id) {
       for (const std::int64_t p : state_.keyframes[id].keypoint_point) {
-        if (p < 0 || seen[p] || state_.points[p].culled) continue;
-        seen[p] = 1;
+        if (p < 0 || state_.points[p].culled || !seen.insert(p).second) continue;
         const std::size_t j = pb.points.size();
         pb.points.push_back(state_.points[p].xy);
         point_ids.push_back(static_cast<std::size_t>(p));
