@@ -72,6 +72,12 @@ for exe in "$build"/test/fuzz/fuzz_*; do
     failed+=("$target")
     printf '%-22s %12s %10s %s\n' "$target" "$execs" "${rate:-?}" "FAILED (rc $rc)"
     grep -E -m5 'ERROR|SUMMARY|terminate|what\(\)|Test unit written' "$log" || tail -20 "$log"
+    # The input itself, so that a finding on another machine (CI) can be replayed from its log:
+    # base64 -d > input && build-fuzz/test/fuzz/fuzz_<target> input
+    for unit in $(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$log" | head -1); do
+      [ -f "$unit" ] && echo "input ($(stat -c %s "$unit") bytes, base64, first 6 KiB):" &&
+        head -c 6144 "$unit" | base64 -w 100
+    done
   else
     printf '%-22s %12s %10s %s\n' "$target" "$execs" "${rate:-?}" ok
   fi
