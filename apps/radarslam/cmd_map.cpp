@@ -307,11 +307,10 @@ int runMap(int argc, char** argv) {
       eval::writePlots(tmp / "eval", *report);
     }
 
-    const SlamStats& st = stats;
     sum << "map summary\n";
     std::snprintf(buf, sizeof buf,
                   "  scans          %zu processed (%zu lost: constant-velocity prediction), %zu skipped\n",
-                  done, st.lost_scans, scans.skipped());
+                  done, stats.lost_scans, scans.skipped());
     sum << buf;
     std::snprintf(
         buf, sizeof buf,
@@ -323,8 +322,8 @@ int runMap(int argc, char** argv) {
     std::snprintf(buf, sizeof buf,
                   "  loops          %zu candidates verified: %zu accepted, %zu rejected by verification, %zu "
                   "removed by the pose graph; %zu graph optimisations\n",
-                  st.loop_candidates, st.loops_accepted, st.loops_rejected, st.loops_rejected_by_graph,
-                  st.graph_optimisations);
+                  stats.loop_candidates, stats.loops_accepted, stats.loops_rejected,
+                  stats.loops_rejected_by_graph, stats.graph_optimisations);
     sum << buf;
     const double n = static_cast<double>(done);
     std::snprintf(
@@ -332,9 +331,10 @@ int runMap(int argc, char** argv) {
         "  speed          %.1f scans/s overall (%.1f while tracking; finish %.1f s); per scan: tracking "
         "%.1f ms; per keyframe: local mapping %.1f ms, loop closing %.1f ms; %zu local BAs, graph "
         "%.0f ms total\n",
-        n / elapsed, n / track_s, elapsed - track_s, st.tracking_ms / n,
-        st.keyframes ? st.local_mapping_ms / st.keyframes : 0.0,
-        st.keyframes ? st.loop_closing_ms / st.keyframes : 0.0, st.bundle_adjustments, st.graph_ms);
+        n / elapsed, n / track_s, elapsed - track_s, stats.tracking_ms / n,
+        stats.keyframes ? stats.local_mapping_ms / stats.keyframes : 0.0,
+        stats.keyframes ? stats.loop_closing_ms / stats.keyframes : 0.0, stats.bundle_adjustments,
+        stats.graph_ms);
     sum << buf;
     std::snprintf(buf, sizeof buf, "  memory         peak RSS %.0f MiB\n", peakRssMiB());
     sum << buf;

@@ -185,16 +185,22 @@ struct RawlogEntryStream::Impl {
     }
     std::uint32_t n = 0;
     readExactly(&n, 4);
-    for (std::uint32_t i = 0; i < n; ++i) {  // each object consumes bytes: n is bounded by the file
-      auto inner = readHeader(false);
-      if (inner->class_name == scanClass())
-        scans.push_back(readScan(std::move(*inner)));
-      else if (inner->class_name == kNullptr)
-        readEndFlag(*inner);
-      else
-        refuse(inner->class_name);
-    }
+    for (std::uint32_t i = 0; i < n; ++i)  // each object consumes bytes: n is bounded by the file
+      readAllowed(*readHeader(false), scans, false);
     readEndFlag(h);
+  }
+
+  /// The allow-list: the object `h` heads is read (its scans appended) or refused. A frame is
+  /// allowed at the top level only (MRPT's frames hold observations, not frames).
+  void readAllowed(ObjectHeader h, std::vector<CObservationRadarScan::Ptr>& scans, bool frame_allowed) {
+    if (h.class_name == scanClass())
+      scans.push_back(readScan(std::move(h)));
+    else if (frame_allowed && h.class_name == frameClass())
+      readFrame(h, scans);
+    else if (h.class_name == kNullptr)
+      readEndFlag(h);
+    else
+      refuse(h.class_name);
   }
 };
 
@@ -208,14 +214,7 @@ std::optional<std::vector<CObservationRadarScan::Ptr>> RawlogEntryStream::next()
   auto header = impl_->readHeader(true);
   if (!header) return std::nullopt;
   std::vector<CObservationRadarScan::Ptr> scans;
-  if (header->class_name == scanClass())
-    scans.push_back(impl_->readScan(std::move(*header)));
-  else if (header->class_name == frameClass())
-    impl_->readFrame(*header, scans);
-  else if (header->class_name == kNullptr)
-    impl_->readEndFlag(*header);
-  else
-    impl_->refuse(header->class_name);
+  impl_->readAllowed(std::move(*header), scans, true);
   ++impl_->entry;
   return scans;
 }

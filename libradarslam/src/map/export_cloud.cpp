@@ -14,14 +14,15 @@ std::vector<fs::path> exportPointCloud(const KeyframeMap& map, const fs::path& d
   // The cloud layer's records (map/layer_files.h: x, y, z, intensity as little-endian float32).
   const std::vector<std::uint8_t> payload = cloudPayload(map);
   const std::string_view data(reinterpret_cast<const char*>(payload.data()), payload.size());
-  const std::string count = std::to_string(payload.size() / 16);
+  const std::size_t points = payload.size() / 16;
+  const std::string count = std::to_string(points);
 
   std::string ply = "ply\nformat binary_little_endian 1.0\ncomment radarslam map points, map frame\n";
   ply.append("element vertex ").append(count).append("\n");
   ply.append("property float x\nproperty float y\nproperty float z\nproperty float intensity\nend_header\n");
   ply.append(data);
 
-  std::string pcd = cloudPcdHeader(payload.size() / 16);
+  std::string pcd = cloudPcdHeader(points);
   pcd.append(data);
 
   const fs::path ply_path = dir / (stem + ".ply"), pcd_path = dir / (stem + ".pcd");
