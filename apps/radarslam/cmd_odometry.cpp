@@ -101,7 +101,7 @@ int runOdometry(int argc, char** argv) {
   RadarOdometry odometry(params);
   ScanIterator scans(*reader, skip_arg.getValue(), first, end, kPrefetchScans);
   const auto t0 = Clock::now();
-  std::size_t done = 0, lost = 0, keyframes = 0, widened = 0;
+  std::size_t done = 0, lost = 0, keyframes = 0, widened = 0, second_motion = 0;
   StageTimes total;
   ProgressLine progress("odometry", scans.total(), !quiet_arg.getValue());
   const auto tail = [&] { return "lost " + std::to_string(lost); };
@@ -111,6 +111,7 @@ int runOdometry(int argc, char** argv) {
     lost += step.status == TrackingStatus::Lost;
     keyframes += step.new_keyframe;
     widened += step.widened;
+    second_motion += step.second_motion;
     const auto& t = step.times;
     total.cartesian += t.cartesian, total.detect += t.detect, total.describe += t.describe;
     total.align_prep += t.align_prep, total.match += t.match, total.clique += t.clique, total.svd += t.svd;
@@ -128,8 +129,9 @@ int runOdometry(int argc, char** argv) {
   std::printf(
       "  scans          %zu tracked, %zu lost (constant-velocity prediction), %zu skipped, %zu keyframes; "
       "%zu "
-      "re-matched with the wide radius (adaptive radius: the motion left its bound)\n",
-      done - lost, lost, scans.skipped(), keyframes, widened);
+      "re-matched with the wide radius (adaptive radius: the motion left its bound); %zu took the second "
+      "rigid motion (the largest rigid set was moving)\n",
+      done - lost, lost, scans.skipped(), keyframes, widened, second_motion);
   const ScanIteratorStats& input = scans.stats();
   std::printf(
       "  input          %zu duplicate scans skipped, %zu unreadable skipped, %zu blank scans, %zu time gaps "

@@ -165,17 +165,26 @@ TEST(OdometrySynthetic, VehicleFixedStructureDoesNotStopTheEstimate) {
         for (std::uint32_t b = b0; b < b0 + 3; ++b) s.row(a)[b] = 255;
     }
   };
-  OdometryParams paper_rule;  // the paper's fixed radius, no acceleration bound on the estimate
+  OdometryParams paper_rule;  // the paper's fixed radius and maximum clique, no acceleration bound
   paper_rule.matching.adaptive_radius = false;
   paper_rule.tracking.max_acceleration_mps2 = 1000;
-  OdometryParams fixed_bounded;  // fixed radius, but the 1 g bound rejects a 60 m/s^2 stop
-  fixed_bounded.matching.adaptive_radius = false;
+  paper_rule.outliers.second_motion = false;
+  OdometryParams fixed_bounded = paper_rule;  // fixed radius, but the 1 g bound rejects a 60 m/s^2 stop
+  fixed_bounded.tracking.max_acceleration_mps2 = OdometryParams{}.tracking.max_acceleration_mps2;
+  // Fixed radius, no acceleration bound, but the second rigid motion weighed against the maximum
+  // clique (rigid_motion_choice.h): the world's matches, at the prediction, win over the clutter's.
+  OdometryParams fixed_second_motion = paper_rule;
+  fixed_second_motion.outliers.second_motion = true;
   const RunResult paper = run(paper_rule, straight, 16, vehicleFixed);
   const RunResult bounded = run(fixed_bounded, straight, 16, vehicleFixed);
+  const RunResult second = run(fixed_second_motion, straight, 16, vehicleFixed);
   const RunResult adaptive = run(OdometryParams{}, straight, 16, vehicleFixed);
   for (int k = 13; k < 16; ++k) {
     EXPECT_LT(paper.steps[k].motion.x, 1.0) << "scan " << k << ": the test no longer shows the failure";
     EXPECT_GT(bounded.steps[k].motion.x, 3.0) << "scan " << k;  // lost: constant-velocity prediction
+    EXPECT_NEAR(second.steps[k].motion.x, 3.75, 0.1) << "scan " << k;
+    EXPECT_TRUE(second.steps[k].second_motion) << "scan " << k;
+    EXPECT_EQ(second.steps[k].status, TrackingStatus::Tracking) << "scan " << k;
     EXPECT_NEAR(adaptive.steps[k].motion.x, 3.75, 0.1) << "scan " << k;
   }
 }

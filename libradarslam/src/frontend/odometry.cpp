@@ -11,6 +11,7 @@
 #include "radarslam/frontend/consistency_graph.h"
 #include "radarslam/frontend/max_clique.h"
 #include "radarslam/frontend/motion_prior_bound.h"
+#include "radarslam/frontend/rigid_motion_choice.h"
 #include "radarslam/frontend/svd_pose.h"
 
 namespace radarslam {
@@ -126,8 +127,10 @@ struct RadarOdometry::Impl {
     return f;
   }
 
-  /// Outlier rejection (eq. (3) + maximum clique) and the SVD pose; returns the inlier set.
-  Correspondences selectInliers(Correspondences matches, OdometryStep& step, mrpt::math::TPose2D& svd_pose) {
+  /// Outlier rejection (eq. (3) + maximum clique) and the SVD pose; returns the inlier set. With a
+  /// prediction, the maximum clique is weighed against the second rigid motion of the matches.
+  Correspondences selectInliers(Correspondences matches, OdometryStep& step, mrpt::math::TPose2D& svd_pose,
+                                const MotionPrediction* prediction = nullptr) {
     auto t0 = Clock::now();
     const auto& o = params.outliers;
     if (static_cast<int>(matches.size()) > o.max_matches) {
@@ -144,7 +147,14 @@ struct RadarOdometry::Impl {
                                                                 : ConsistencyTest::PairwiseDistance);
       const CliqueResult c = maximumClique(g, o.max_clique_steps);
       step.clique_exact = c.exact;
-      for (int v : c.vertices) clique.push_back(matches[v]);
+      std::vector<int> rigid = c.vertices;
+      if (prediction && o.second_motion) {
+        RigidMotionChoice choice = chooseRigidMotion(matches, g, c.vertices, *prediction,
+                                                     params.tracking.min_inliers, o.max_clique_steps);
+        rigid = std::move(choice.vertices);
+        step.second_motion = choice.second;
+      }
+      for (int v : rigid) clique.push_back(matches[v]);
     } else {
       clique = matches;
     }
@@ -263,7 +273,11 @@ struct RadarOdometry::Impl {
     step.matches = static_cast<int>(matches.size());
 
     mrpt::math::TPose2D svd_pose;
-    Correspondences inliers = selectInliers(matches, step, svd_pose);
+    // The prediction the rigid sets are weighed against: only once the adaptive bound has measured
+    // the prediction's error (not after a gap, a loss or at the start, when the wide radius is used).
+    const MotionPrediction prediction{prior, bound.sigmaTranslation(), radius.fixed_m, keypoint_sigma_m};
+    const bool predicted = !wide && prediction.sigma_m > 0;
+    Correspondences inliers = selectInliers(matches, step, svd_pose, predicted ? &prediction : nullptr);
     step.inliers = static_cast<int>(inliers.size());
     if (adaptive && !wide &&
         (step.inliers < params.tracking.min_inliers || 2 * step.matches < last_matches)) {

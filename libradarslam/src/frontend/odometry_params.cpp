@@ -40,6 +40,7 @@ void loadParams(const YamlParams& yaml, OdometryParams& p) {
   o.get("max_matches", p.outliers.max_matches, Range::closed(3, 5000));
   o.get("max_clique_steps", p.outliers.max_clique_steps, Range::closed(1, 1e8));
   o.get("inlier_gate_m", p.outliers.inlier_gate_m, Range::above(0, 100));
+  o.get("second_motion", p.outliers.second_motion);
 
   const YamlParams pa = odo.section("patch_alignment");
   pa.get("enabled", p.patch_alignment.enabled);

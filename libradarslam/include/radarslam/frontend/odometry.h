@@ -52,6 +52,9 @@ struct OdometryStep {
   int keypoints = 0, matches = 0, inliers = 0;
   bool clique_exact = true;
   bool widened = false;  ///< the adaptive radius found too few inliers; matched again with the wide one
+  /// The second rigid motion of the matches was more likely than the maximum clique's
+  /// (frontend/rigid_motion_choice.h): the largest rigid set was moving.
+  bool second_motion = false;
   /// The estimate left the constant-velocity prediction by more than a road vehicle can
   /// (TrackingParams::max_acceleration_mps2): treated as a tracking loss (status Lost).
   bool implausible = false;

@@ -23,6 +23,9 @@ struct OutlierParams {
   long max_clique_steps = 20000;         ///< branch-and-bound budget; valid [1, 1e8]
   double inlier_gate_m =
       1.0;  ///< after the SVD pose, matches within this are inliers for eq. (4); valid (0, 100]
+  /// Weigh the maximum clique against the second rigid motion (the maximum clique of the other
+  /// matches) by their likelihoods under the constant-velocity prediction (frontend/rigid_motion_choice.h).
+  bool second_motion = true;
 };
 
 struct TrackingParams {
