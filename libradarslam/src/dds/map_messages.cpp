@@ -81,7 +81,7 @@ PointCloud2Msg cloudMessage(const fs::path& map_dir, const MapLayersManifest& la
   PointCloud2Msg m;
   m.header = mapHeader(stamp);
   m.fields = {{"x", 0}, {"y", 4}, {"z", 8}, {"intensity", 12}};
-  m.point_step = 16;
+  m.point_step = kCloudRecordBytes;
   std::uint64_t n = 0;
   m.data = readCloudLayer(map_dir, layers, n);
   m.width = static_cast<std::uint32_t>(n);
@@ -103,9 +103,9 @@ PointCloud2Msg cloudMessage(const KeyframeMap& map, StampNs stamp) {
   PointCloud2Msg m;
   m.header = mapHeader(stamp);
   m.fields = {{"x", 0}, {"y", 4}, {"z", 8}, {"intensity", 12}};
-  m.point_step = 16;
+  m.point_step = kCloudRecordBytes;
   m.data = cloudPayload(map);  // the cloud layer's records (map/layer_files.h)
-  const std::size_t n = m.data.size() / 16;
+  const std::size_t n = m.data.size() / kCloudRecordBytes;
   m.width = static_cast<std::uint32_t>(n);
   m.row_step = m.width * m.point_step;
   return m;

@@ -13,7 +13,6 @@
 namespace radarslam {
 
 namespace {
-constexpr std::size_t kPointBytes = 16;
 
 std::uint32_t clampIndex(double v, std::uint32_t n) {
   if (!(v >= 0)) return 0;  // also NaN
@@ -46,10 +45,10 @@ TiledCloud tiledCloudPayload(const KeyframeMap& map, const GridTiling& t, double
   forEachRecord([&](const float*, std::uint32_t key) { ++start[key + 1]; });
   for (std::size_t k = 0; k < tiles; ++k) start[k + 1] += start[k];
   TiledCloud out;
-  out.data.resize(start[tiles] * kPointBytes);
+  out.data.resize(start[tiles] * kCloudRecordBytes);
   std::vector<std::uint64_t> next(start.begin(), start.end() - 1);
   forEachRecord([&](const float* v, std::uint32_t key) {  // counting sort: stable
-    std::memcpy(out.data.data() + next[key]++ * kPointBytes, v, kPointBytes);
+    std::memcpy(out.data.data() + next[key]++ * kCloudRecordBytes, v, kCloudRecordBytes);
   });
   for (std::size_t k = 0; k < tiles; ++k) {
     const std::uint64_t count = start[k + 1] - start[k];
@@ -59,7 +58,7 @@ TiledCloud tiledCloudPayload(const KeyframeMap& map, const GridTiling& t, double
     e.ty = static_cast<std::uint32_t>(k / t.tiles_x);
     e.first = start[k];
     e.count = count;
-    e.sha256 = sha256Hex({out.data.data() + e.first * kPointBytes, count * kPointBytes});
+    e.sha256 = sha256Hex({out.data.data() + e.first * kCloudRecordBytes, count * kCloudRecordBytes});
     out.tiles.push_back(std::move(e));
   }
   return out;

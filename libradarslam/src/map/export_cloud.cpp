@@ -14,7 +14,7 @@ std::vector<fs::path> exportPointCloud(const KeyframeMap& map, const fs::path& d
   // The cloud layer's records (map/layer_files.h: x, y, z, intensity as little-endian float32).
   const std::vector<std::uint8_t> payload = cloudPayload(map);
   const std::string_view data(reinterpret_cast<const char*>(payload.data()), payload.size());
-  const std::size_t points = payload.size() / 16;
+  const std::size_t points = payload.size() / kCloudRecordBytes;
   const std::string count = std::to_string(points);
 
   std::string ply = "ply\nformat binary_little_endian 1.0\ncomment radarslam map points, map frame\n";

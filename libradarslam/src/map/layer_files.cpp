@@ -99,7 +99,7 @@ std::string cloudPcdHeader(std::uint64_t points) {
 std::vector<std::uint8_t> cloudPayload(const KeyframeMap& map) {
   std::uint64_t n = 0;
   for (const auto& kf : map.keyframes) n += kf.points.size();
-  std::vector<std::uint8_t> data(n * 16);
+  std::vector<std::uint8_t> data(n * kCloudRecordBytes);
   std::size_t at = 0;
   for (const auto& kf : map.keyframes) {
     const double c = std::cos(kf.pose.phi), s = std::sin(kf.pose.phi);
@@ -115,8 +115,8 @@ std::vector<std::uint8_t> cloudPayload(const KeyframeMap& map) {
 
 std::string cloudPcd(const KeyframeMap& map, std::uint64_t* points) {
   const std::vector<std::uint8_t> data = cloudPayload(map);
-  if (points) *points = data.size() / 16;
-  std::string pcd = cloudPcdHeader(data.size() / 16);
+  if (points) *points = data.size() / kCloudRecordBytes;
+  std::string pcd = cloudPcdHeader(data.size() / kCloudRecordBytes);
   pcd.append(data.begin(), data.end());
   return pcd;
 }
@@ -312,8 +312,9 @@ std::vector<std::uint8_t> readCloudLayer(const fs::path& map_dir, const MapLayer
     throw InputError(file, "PCD header: expected fields x y z intensity, FLOAT32, height 1");
   const std::string n = std::to_string(layers.cloud_points);
   if (pcdLine(lines, 5, "WIDTH", file) != V{n} || pcdLine(lines, 8, "POINTS", file) != V{n} ||
-      data.size() != layers.cloud_points * 16)
-    throw InputError(file, "PCD holds " + std::to_string(data.size() / 16) + " points, manifest says " + n);
+      data.size() != layers.cloud_points * kCloudRecordBytes)
+    throw InputError(
+        file, "PCD holds " + std::to_string(data.size() / kCloudRecordBytes) + " points, manifest says " + n);
   points = layers.cloud_points;
   return data;
 }
@@ -333,12 +334,12 @@ void forEachCloudTileLayer(
   const std::string file = path.string();
   const std::string header = cloudPcdHeader(layers.cloud_points);
   std::ifstream in =
-      openLayerBody(path, e, header, layers.cloud_points * 16,
+      openLayerBody(path, e, header, layers.cloud_points * kCloudRecordBytes,
                     "a PCD of the manifest's " + std::to_string(layers.cloud_points) + " points");
   std::vector<std::uint8_t> data;
   for (const CloudTileEntry& t : index) {
-    data.resize(t.count * 16);
-    in.seekg(static_cast<std::streamoff>(header.size() + t.first * 16));
+    data.resize(t.count * kCloudRecordBytes);
+    in.seekg(static_cast<std::streamoff>(header.size() + t.first * kCloudRecordBytes));
     if (!in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(data.size())))
       throw InputError(file,
                        "read failed at tile (" + std::to_string(t.tx) + ", " + std::to_string(t.ty) + ")");

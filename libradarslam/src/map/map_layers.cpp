@@ -173,7 +173,7 @@ MapLayersManifest writeMapLayers(const KeyframeMap& map, const fs::path& map_dir
     else
       cloud.data = cloudPayload(map);
     const std::vector<std::uint8_t>& data = cloud.data;
-    m.cloud_points = data.size() / 16;
+    m.cloud_points = data.size() / kCloudRecordBytes;
     const std::string header = cloudPcdHeader(m.cloud_points);
     writeSynced(dir / kCloudLayerFile, {header, {reinterpret_cast<const char*>(data.data()), data.size()}});
     Sha256 sha;

@@ -44,7 +44,10 @@ std::string gridRosYaml(const std::string& image, float resolution, double origi
 std::string cloudPcd(const KeyframeMap& map, std::uint64_t* points);
 /// The header cloudPcd writes for `points` points.
 std::string cloudPcdHeader(std::uint64_t points);
-/// The data section of cloudPcd: 16 bytes (x y z intensity) per keyframe point, keyframe order.
+/// Bytes of one point's record in the cloud layer and the PointCloud2 payload: x y z intensity,
+/// little-endian FLOAT32 (the PCD's and PointCloud2's point_step).
+inline constexpr std::size_t kCloudRecordBytes = 16;
+/// The data section of cloudPcd: kCloudRecordBytes (x y z intensity) per keyframe point, keyframe order.
 std::vector<std::uint8_t> cloudPayload(const KeyframeMap& map);
 /// One point's record of that payload: x, y in the map frame, z = 0, intensity = power, given
 /// c = cos(kf.pose.phi), s = sin(kf.pose.phi). Every cloud writer goes through it (cloudPayload:
