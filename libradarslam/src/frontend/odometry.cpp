@@ -273,8 +273,9 @@ struct RadarOdometry::Impl {
     step.matches = static_cast<int>(matches.size());
 
     mrpt::math::TPose2D svd_pose;
-    // The prediction the rigid sets are weighed against: only once the adaptive bound has measured
-    // the prediction's error (not after a gap, a loss or at the start, when the wide radius is used).
+    // The prediction the rigid sets are weighed against: only once the bound has measured the
+    // prediction's error, and not when the wide radius is used (start, data gap, loss with the
+    // fixed radius: no velocity to trust).
     const MotionPrediction prediction{prior, bound.sigmaTranslation(), radius.fixed_m, keypoint_sigma_m};
     const bool predicted = !wide && prediction.sigma_m > 0;
     Correspondences inliers = selectInliers(matches, step, svd_pose, predicted ? &prediction : nullptr);
@@ -298,6 +299,7 @@ struct RadarOdometry::Impl {
         inliers = std::move(wide_inliers);
         svd_pose = wide_pose;
         step.clique_exact = retry.clique_exact;
+        step.second_motion = retry.second_motion;  // the wide re-match weighs no prediction
         step.matches = static_cast<int>(matches.size());
         step.inliers = static_cast<int>(inliers.size());
         step.widened = true;
