@@ -38,6 +38,14 @@ MotionPrediction prediction(const mrpt::math::TPose2D& predicted) {
   return {predicted, /*sigma_m=*/0.12, /*search_radius_m=*/1.1, /*keypoint_sigma_m=*/0.25};
 }
 
+/// The choice keeps the maximum clique `first`.
+void expectFirstKept(const Correspondences& matches, const DenseGraph& g, const CliqueResult& first,
+                     const MotionPrediction& p) {
+  const RigidMotionChoice choice = chooseRigidMotion(matches, g, first.vertices, p, kMinInliers, 0);
+  EXPECT_FALSE(choice.second);
+  EXPECT_EQ(choice.vertices, first.vertices);
+}
+
 bool allBelow(const std::vector<int>& v, int n) {
   return std::all_of(v.begin(), v.end(), [n](int i) { return i < n; });
 }
@@ -65,10 +73,7 @@ TEST(RigidMotionChoice, TheStaticWorldWinsOverALargerVehicleBesideAWall) {
 
   // Predicted at the vehicle's motion (the slide already under way), the vehicle keeps it: the choice
   // follows the likelihood, not a preference for the smaller set.
-  const RigidMotionChoice slid =
-      chooseRigidMotion(matches, g, first.vertices, prediction(vehicle), kMinInliers, 0);
-  EXPECT_FALSE(slid.second);
-  EXPECT_EQ(slid.vertices, first.vertices);
+  expectFirstKept(matches, g, first, prediction(vehicle));
 }
 
 TEST(RigidMotionChoice, ALargerStaticWorldKeepsTheMaximumClique) {
@@ -82,10 +87,7 @@ TEST(RigidMotionChoice, ALargerStaticWorldKeepsTheMaximumClique) {
   const DenseGraph g = buildConsistencyGraph(matches, kDeltaC);
   const CliqueResult first = maximumClique(g);
   // Predicted exactly at the vehicle's motion: still the static world.
-  const RigidMotionChoice choice =
-      chooseRigidMotion(matches, g, first.vertices, prediction(vehicle), kMinInliers, 0);
-  EXPECT_FALSE(choice.second);
-  EXPECT_EQ(choice.vertices, first.vertices);
+  expectFirstKept(matches, g, first, prediction(vehicle));
 }
 
 TEST(RigidMotionChoice, NoSecondRigidSetOrNoPredictionKeepsTheFirst) {
@@ -102,13 +104,10 @@ TEST(RigidMotionChoice, NoSecondRigidSetOrNoPredictionKeepsTheFirst) {
   }
   const DenseGraph g = buildConsistencyGraph(matches, kDeltaC);
   const CliqueResult first = maximumClique(g);
-  const RigidMotionChoice far =
-      chooseRigidMotion(matches, g, first.vertices, prediction({9, 9, 0}), kMinInliers, 0);
-  EXPECT_FALSE(far.second);
-  EXPECT_EQ(far.vertices, first.vertices);
+  expectFirstKept(matches, g, first, prediction({9, 9, 0}));
   MotionPrediction none = prediction(ego);
   none.sigma_m = 0;  // the prediction's error not measured yet
-  EXPECT_FALSE(chooseRigidMotion(matches, g, first.vertices, none, kMinInliers, 0).second);
+  expectFirstKept(matches, g, first, none);
 }
 
 TEST(RigidMotionChoice, LogLikelihoodGrowsWithMatchesAndFallsWithTheDeviation) {
