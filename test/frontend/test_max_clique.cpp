@@ -80,5 +80,18 @@ TEST(MaxClique, EmptyAndEdgelessGraphs) {
   EXPECT_EQ(maximumClique(g).vertices, (std::vector<int>{0, 2}));
 }
 
+TEST(DenseGraph, InducedSubgraphRenumbersByTheGivenVertices) {
+  DenseGraph g(70);  // edges across the 64-bit word boundary
+  g.connect(0, 65);
+  g.connect(65, 3);
+  g.connect(3, 69);
+  const DenseGraph sub = g.induced({65, 3, 0});
+  ASSERT_EQ(sub.size(), 3);
+  EXPECT_TRUE(sub.adjacent(0, 1));   // 65 - 3
+  EXPECT_TRUE(sub.adjacent(0, 2));   // 65 - 0
+  EXPECT_FALSE(sub.adjacent(1, 2));  // 3 - 0
+  EXPECT_EQ(sub.edgeCount(), 2u);    // 3 - 69 left out with 69
+}
+
 }  // namespace
 }  // namespace radarslam

@@ -21,6 +21,15 @@ int DenseGraph::degree(int i) const {
   return d;
 }
 
+DenseGraph DenseGraph::induced(const std::vector<int>& vertices) const {
+  const int n = static_cast<int>(vertices.size());
+  DenseGraph sub(n);
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b)
+      if (adjacent(vertices[a], vertices[b])) sub.connect(a, b);
+  return sub;
+}
+
 std::size_t DenseGraph::edgeCount() const {
   std::size_t twice = 0;
   for (int i = 0; i < n_; ++i) twice += static_cast<std::size_t>(degree(i));
@@ -126,10 +135,7 @@ CliqueResult maximumClique(const DenseGraph& graph, long max_steps) {
   std::vector<int> deg(n);
   for (int i = 0; i < n; ++i) deg[i] = graph.degree(i);
   std::stable_sort(perm.begin(), perm.end(), [&](int a, int b) { return deg[a] > deg[b]; });
-  DenseGraph sorted(n);
-  for (int i = 0; i < n; ++i)
-    for (int j = i + 1; j < n; ++j)
-      if (graph.adjacent(perm[i], perm[j])) sorted.connect(i, j);
+  const DenseGraph sorted = graph.induced(perm);
 
   Search search(sorted, max_steps);
   search.run();

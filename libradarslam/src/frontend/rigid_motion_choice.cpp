@@ -41,11 +41,7 @@ RigidMotionChoice chooseRigidMotion(const Correspondences& matches, const DenseG
   for (int i = 0; i < graph.size(); ++i)
     if (!in_first[i]) rest.push_back(i);
   if (static_cast<int>(rest.size()) < min_inliers) return out;
-  DenseGraph others(static_cast<int>(rest.size()));
-  for (std::size_t a = 0; a < rest.size(); ++a)
-    for (std::size_t b = a + 1; b < rest.size(); ++b)
-      if (graph.adjacent(rest[a], rest[b])) others.connect(static_cast<int>(a), static_cast<int>(b));
-  const CliqueResult second = maximumClique(others, max_clique_steps);
+  const CliqueResult second = maximumClique(graph.induced(rest), max_clique_steps);
   if (static_cast<int>(second.vertices.size()) < min_inliers) return out;
   std::vector<int> second_vertices;
   for (int v : second.vertices) second_vertices.push_back(rest[v]);

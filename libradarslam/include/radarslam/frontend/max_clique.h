@@ -19,6 +19,8 @@ class DenseGraph {
   const std::uint64_t* row(int i) const { return bits_.data() + static_cast<std::size_t>(i) * words_; }
   int degree(int i) const;
   std::size_t edgeCount() const;
+  /// The subgraph on `vertices`: its vertex k is vertices[k] of this graph.
+  DenseGraph induced(const std::vector<int>& vertices) const;
 
  private:
   int n_ = 0, words_ = 0;
