@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "radarslam/core/errors.h"
+#include "radarslam/dds/map_messages.h"
 #include "radarslam/map/layer_files.h"
 #include "radarslam/map/sha256.h"
 
@@ -24,27 +25,14 @@ void writeAll(int fd, const void* data, std::size_t n, const fs::path& file) {
 }
 
 bool isOurLayout(const PointCloud2Msg& m) {
-  const std::vector<std::string> names{"x", "y", "z", "intensity"};
-  if (m.fields.size() != 4 || m.point_step != kCloudRecordBytes || m.height != 1 || m.is_bigendian)
-    return false;
-  for (std::size_t i = 0; i < 4; ++i)
-    if (m.fields[i].name != names[i] || m.fields[i].offset != 4 * i ||
-        m.fields[i].datatype != PointFieldMsg::kFloat32 || m.fields[i].count != 1)
-      return false;
-  return m.data.size() == std::uint64_t{m.width} * kCloudRecordBytes;
+  return m.fields == cloudRecordFields() && m.point_step == kCloudRecordBytes && m.height == 1 &&
+         !m.is_bigendian && m.data.size() == std::uint64_t{m.width} * kCloudRecordBytes;
 }
 
 }  // namespace
 
 PointCloud2Msg cloudTileMessage(const MapInfoMsg& info, std::vector<std::uint8_t> data) {
-  PointCloud2Msg m;
-  m.header = info.header;
-  m.fields = {{"x", 0}, {"y", 4}, {"z", 8}, {"intensity", 12}};
-  m.point_step = kCloudRecordBytes;
-  m.width = static_cast<std::uint32_t>(data.size() / kCloudRecordBytes);
-  m.row_step = m.width * m.point_step;
-  m.data = std::move(data);
-  return m;
+  return cloudRecordsMessage(info.header, std::move(data));
 }
 
 void describeCloudTiles(MapInfoMsg& info, const std::vector<CloudTileEntry>& index, std::uint64_t points,

@@ -78,15 +78,8 @@ OccupancyGridMsg gridMessage(const fs::path& map_dir, const MapLayersManifest& l
 }
 
 PointCloud2Msg cloudMessage(const fs::path& map_dir, const MapLayersManifest& layers, StampNs stamp) {
-  PointCloud2Msg m;
-  m.header = mapHeader(stamp);
-  m.fields = {{"x", 0}, {"y", 4}, {"z", 8}, {"intensity", 12}};
-  m.point_step = kCloudRecordBytes;
-  std::uint64_t n = 0;
-  m.data = readCloudLayer(map_dir, layers, n);
-  m.width = static_cast<std::uint32_t>(n);
-  m.row_step = m.width * m.point_step;
-  return m;
+  std::uint64_t n = 0;  // = the records' count: readCloudLayer checks the body against the manifest
+  return cloudRecordsMessage(mapHeader(stamp), readCloudLayer(map_dir, layers, n));
 }
 
 OctomapMsg octomapMessage(const fs::path& map_dir, const MapLayersManifest& layers, StampNs stamp) {
@@ -100,14 +93,22 @@ OctomapMsg octomapMessage(const fs::path& map_dir, const MapLayersManifest& laye
 }
 
 PointCloud2Msg cloudMessage(const KeyframeMap& map, StampNs stamp) {
+  return cloudRecordsMessage(mapHeader(stamp), cloudPayload(map));  // the cloud layer's records
+}
+
+const std::vector<PointFieldMsg>& cloudRecordFields() {
+  static const std::vector<PointFieldMsg> fields{{"x", 0}, {"y", 4}, {"z", 8}, {"intensity", 12}};
+  return fields;
+}
+
+PointCloud2Msg cloudRecordsMessage(const HeaderMsg& header, std::vector<std::uint8_t> records) {
   PointCloud2Msg m;
-  m.header = mapHeader(stamp);
-  m.fields = {{"x", 0}, {"y", 4}, {"z", 8}, {"intensity", 12}};
+  m.header = header;
+  m.fields = cloudRecordFields();
   m.point_step = kCloudRecordBytes;
-  m.data = cloudPayload(map);  // the cloud layer's records (map/layer_files.h)
-  const std::size_t n = m.data.size() / kCloudRecordBytes;
-  m.width = static_cast<std::uint32_t>(n);
+  m.width = static_cast<std::uint32_t>(records.size() / kCloudRecordBytes);
   m.row_step = m.width * m.point_step;
+  m.data = std::move(records);
   return m;
 }
 

@@ -115,8 +115,9 @@ std::vector<std::uint8_t> cloudPayload(const KeyframeMap& map) {
 
 std::string cloudPcd(const KeyframeMap& map, std::uint64_t* points) {
   const std::vector<std::uint8_t> data = cloudPayload(map);
-  if (points) *points = data.size() / kCloudRecordBytes;
-  std::string pcd = cloudPcdHeader(data.size() / kCloudRecordBytes);
+  const std::uint64_t n = data.size() / kCloudRecordBytes;
+  if (points) *points = n;
+  std::string pcd = cloudPcdHeader(n);
   pcd.append(data.begin(), data.end());
   return pcd;
 }

@@ -24,6 +24,11 @@ OccupancyGridMsg gridMessage(const OccupancyRaster& raster, StampNs stamp);
 /// sensor_msgs/PointCloud2 of every keyframe point in the map frame: fields x, y, z (= 0),
 /// intensity (= power), FLOAT32, little-endian, point_step 16, height 1.
 PointCloud2Msg cloudMessage(const KeyframeMap& map, StampNs stamp);
+/// The fields of that layout (x, y, z, intensity at offsets 0, 4, 8, 12; FLOAT32, count 1).
+const std::vector<PointFieldMsg>& cloudRecordFields();
+/// A PointCloud2 of that layout holding `records` (kCloudRecordBytes each, map/layer_files.h):
+/// every cloud message (whole map, from the layer file, one tile) is built here.
+PointCloud2Msg cloudRecordsMessage(const HeaderMsg& header, std::vector<std::uint8_t> records);
 
 /// octomap_msgs/Octomap (binary) of exportOctomap(map): data = OcTree::writeBinaryData.
 OctomapMsg octomapMessage(const KeyframeMap& map, const OctomapExportParams& params, StampNs stamp);
