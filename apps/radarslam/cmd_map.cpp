@@ -257,6 +257,11 @@ int runMap(int argc, char** argv) {
           le.false_in_graph, le.max_error_m, le.max_error_deg, le.nees_mean, 100 * le.nees_within_95,
           le.slide_accepted, le.slide_false);
       eval_text += buf;
+      std::size_t refused_right = 0;
+      for (const auto& [reason, count] : le.refused_right) refused_right += count;
+      eval_text += "  refused truth  " + std::to_string(refused_right) +
+                   " refused candidates had the right pose (" + refusedRightText(le) + "), " +
+                   std::to_string(le.refused_wrong) + " a wrong one\n";
       const MapConsistency mc = evaluateMapConsistency(map, gt);
       std::snprintf(
           buf, sizeof buf,

@@ -14,6 +14,16 @@ std::string number(double v) {
   return buf;
 }
 
+/// A JSON string of program text (the loop records' reasons: printable ASCII).
+std::string jsonString(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
 std::string accuracy(const eval::EvalReport& r) {
   return "{\"kitti_t_percent\": " + number(r.kitti.t_err_percent) +
          ", \"kitti_r_deg_per_m\": " + number(r.kitti.r_err_deg_per_m) +
@@ -41,7 +51,12 @@ std::string slamQualityJson(const eval::EvalReport& slam, const eval::EvalReport
        ", \"nees_within_95\": " + number(loops.nees_within_95) +
        ", \"slide_accepted\": " + std::to_string(loops.slide_accepted) +
        ", \"slide_false\": " + std::to_string(loops.slide_false) +
-       ", \"keyframes_with_true_loop\": " + std::to_string(loops.keyframes_with_true_loop) + "},\n";
+       ", \"keyframes_with_true_loop\": " + std::to_string(loops.keyframes_with_true_loop) +
+       ", \"refused_wrong\": " + std::to_string(loops.refused_wrong) + ", \"refused_right\": {";
+  for (auto it = loops.refused_right.begin(); it != loops.refused_right.end(); ++it)
+    s += (it == loops.refused_right.begin() ? "" : ", ") + jsonString(it->first) + ": " +
+         std::to_string(it->second);
+  s += "}},\n";
   s += "  \"map_consistency\": {\"revisits\": " + pairs(consistency.revisits) +
        ", \"all\": " + pairs(consistency.all) + "}\n}\n";
   return s;

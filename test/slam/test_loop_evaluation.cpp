@@ -1,9 +1,12 @@
 // slam/loop_evaluation.h: an accepted loop is false when its relative pose is off the truth by more
 // than 2 m or 3 degrees; a partial loop (along one line) only across its line and in heading, and it
-// counts in neither the recall nor the error figures of full loops.
+// counts in neither the recall nor the error figures of full loops. Refused candidates are judged the
+// same way and counted by why they were refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "radarslam/slam/loop_evaluation.h"
 
@@ -65,6 +68,34 @@ TEST(LoopEvaluation, APartialLoopIsJudgedAcrossItsLineOnly) {
   EXPECT_EQ(ev.false_in_graph, 2u);
   EXPECT_EQ(ev.keyframes_with_loop_found, 1u) << "only the correct full loop counts as found";
   EXPECT_NEAR(ev.max_error_m, std::hypot(0.1, 0.1), 1e-9);
+}
+
+TEST(LoopEvaluation, RefusedCandidatesAreJudgedByTheirPoseAndCountedByReason) {
+  KeyframeMap map;
+  Trajectory gt;
+  const int n = 60;
+  outAndBack(map, gt, n);
+  auto refused = [&](std::uint64_t match, double ex, const std::string& reason) {
+    LoopRecord l = loop(2 * n - 1 - match, match, n, ex, 0.0);
+    l.accepted = false;
+    l.reason = reason;
+    return l;
+  };
+  const std::vector<LoopRecord> loops = {
+      refused(10, 0.5, "ambiguous place (a distant alignment scores almost as well)"),
+      refused(12, 1.5, "ambiguous place (a distant alignment scores almost as well)"),
+      refused(14, 8.0, "ambiguous place (a distant alignment scores almost as well)"),  // wrong pose
+      refused(16, 0.2, "beyond the drift bound (91.4 m)"),
+      refused(18, 30.0, "too few inliers"),    // wrong pose
+      loop(2 * n - 1 - 30, 30, n, 0.1, 0.1)};  // accepted: not a refusal
+  const LoopEvaluation ev = evaluateLoops(map, loops, gt);
+  EXPECT_EQ(ev.accepted, 1u);
+  EXPECT_EQ(ev.refused_wrong, 2u);
+  ASSERT_EQ(ev.refused_right.size(), 2u);
+  EXPECT_EQ(ev.refused_right.at("ambiguous place"), 2u);
+  EXPECT_EQ(ev.refused_right.at("beyond the drift bound"), 1u);
+  EXPECT_EQ(refusedRightText(ev), "2 ambiguous place, 1 beyond the drift bound");
+  EXPECT_EQ(refusedRightText(LoopEvaluation{}), "none");
 }
 
 }  // namespace

@@ -36,6 +36,16 @@ LoopEvaluation evaluateLoops(const KeyframeMap& map, const std::vector<LoopRecor
       }
     }
   }
+  for (const auto& l : loops) {  // refused candidates: a loop lost, or rightly refused
+    if (l.accepted || l.query >= n || l.match >= n || !truth[l.query] || !truth[l.match]) continue;
+    const auto g = between(*truth[l.match], *truth[l.query]);
+    const double em = std::hypot(l.relative.x - g.x, l.relative.y - g.y);
+    const double ed = std::abs(std::remainder(l.relative.phi - g.phi, 2 * M_PI)) * 180 / M_PI;
+    if (em > p.max_error_m || ed > p.max_error_deg)
+      ++ev.refused_wrong;
+    else
+      ++ev.refused_right[l.reason.substr(0, l.reason.find(" ("))];
+  }
   for (const auto& l : loops) {
     if (!l.accepted || l.query >= n || l.match >= n || !truth[l.query] || !truth[l.match]) continue;
     ++ev.accepted;
@@ -75,6 +85,13 @@ LoopEvaluation evaluateLoops(const KeyframeMap& map, const std::vector<LoopRecor
   ev.recall =
       ev.keyframes_with_true_loop ? double(ev.keyframes_with_loop_found) / ev.keyframes_with_true_loop : 0;
   return ev;
+}
+
+std::string refusedRightText(const LoopEvaluation& evaluation) {
+  std::string text;
+  for (const auto& [reason, count] : evaluation.refused_right)
+    text += (text.empty() ? "" : ", ") + std::to_string(count) + " " + reason;
+  return text.empty() ? "none" : text;
 }
 
 }  // namespace radarslam

@@ -8,7 +8,11 @@
 //  - An accepted loop is false if its relative pose is more than max_error_m or max_error_deg
 //    from the ground-truth relative pose of the two keyframes (a correct relative pose between
 //    keyframes farther apart than true_loop_distance_m is still a valid loop).
+//  - A refused candidate is judged the same way: right (the verifier's relative pose was within
+//    those bounds; a loop lost) or wrong (refusing it was right), counted by why it was refused.
 #include <cstddef>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "radarslam/core/trajectory.h"
@@ -39,7 +43,16 @@ struct LoopEvaluation {
   /// line and the heading); a false one also counts in false_accepted / false_in_graph. They count
   /// in neither the recall nor the error and NEES figures above.
   std::size_t slide_accepted = 0, slide_false = 0;
+  /// Refused candidates judged like accepted loops: `refused_right` had a relative pose within
+  /// max_error_m / max_error_deg of the truth (a loop the system could have used), by the reason it
+  /// was refused (LoopRecord::reason up to its first " (", e.g. "ambiguous place"); `refused_wrong`
+  /// had not (refusing them was right).
+  std::map<std::string, std::size_t> refused_right;
+  std::size_t refused_wrong = 0;
 };
+
+/// "N reason, M reason" of LoopEvaluation::refused_right ("none" when empty).
+std::string refusedRightText(const LoopEvaluation& evaluation);
 
 LoopEvaluation evaluateLoops(const KeyframeMap& map, const std::vector<LoopRecord>& loops,
                              const Trajectory& ground_truth, const LoopEvaluationParams& params = {});
