@@ -58,7 +58,8 @@ SECTIONS = [
 # Nested parameter structs a loader fills through a member: (struct, member) -> member's struct.
 NESTED = {("LoopVerifierParams", "information"): "AlignmentInformationParams",
           ("MapLayerParams", "grid"): "GridExportParams", ("MapLayerParams", "octomap"): "OctomapExportParams",
-          ("MapLayerParams", "tiling"): "GridTilingParams"}
+          ("MapLayerParams", "tiling"): "GridTilingParams",
+          ("RefineParams", "structure"): "StructureInformationParams"}
 
 # Enum parameters read as strings: (struct, key) -> default shown.
 ENUM_DEFAULTS = {("MapLayerParams", "octomap_fill"): '"grid_columns"'}

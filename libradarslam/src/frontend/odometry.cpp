@@ -12,6 +12,7 @@
 #include "radarslam/frontend/max_clique.h"
 #include "radarslam/frontend/motion_prior_bound.h"
 #include "radarslam/frontend/rigid_motion_choice.h"
+#include "radarslam/frontend/structure_information.h"
 #include "radarslam/frontend/svd_pose.h"
 
 namespace radarslam {
@@ -59,6 +60,8 @@ struct Frame {
   std::vector<Eigen::Vector2d> raw;
   std::vector<double> dt;  ///< firing time of each keypoint relative to the reference time, s
   FeatureSet features;
+  /// Each keypoint's information shape from its image structure (empty: isotropic), in metres.
+  std::vector<Eigen::Matrix2d> structure;
   bool doppler = false;  ///< taken from a Doppler-compensated copy of the scan
 
   void compensate(const BodyVelocity& v, bool enabled) {
@@ -123,6 +126,18 @@ struct RadarOdometry::Impl {
     times.describe = msSince(t0);
     t0 = Clock::now();
     if (params.patch_alignment.enabled) f.align = prepareAlignImage(image, params.patch_alignment);
+    if (params.refine.structure.enabled && !f.align.smooth.empty()) {
+      // The patch whose alignment places the match (patch_radius_px) is the neighbourhood.
+      const cv::Point2d o = converter.pixelToMetres(0, 0), ex = converter.pixelToMetres(1, 0),
+                        ey = converter.pixelToMetres(0, 1);
+      Eigen::Matrix2d pixel_to_metres;
+      pixel_to_metres << ex.x - o.x, ey.x - o.x, ex.y - o.y, ey.y - o.y;
+      f.structure.reserve(f.raw.size());
+      for (std::size_t i = 0; i < f.raw.size(); ++i)
+        f.structure.push_back(structureInformation(f.align.smooth, f.pixels[i],
+                                                   params.patch_alignment.patch_radius_px, pixel_to_metres,
+                                                   f.raw[i], params.refine.structure));
+    }
     times.align_prep = msSince(t0);
     return f;
   }
@@ -329,12 +344,15 @@ struct RadarOdometry::Impl {
       for (int pass = 0; pass < passes; ++pass) {
         if (pass > 0 && kf_is_last) keyframe.compensate(velocity_known ? blend(velocity, v, 0.5) : v, mc);
         Correspondences c(obs.size());
+        std::vector<Eigen::Matrix2d> shapes;
+        if (!keyframe.structure.empty()) shapes.reserve(obs.size());
         const BodyVelocity vc = currentVelocity(v);
         for (std::size_t i = 0; i < obs.size(); ++i) {
           c[i].cur = mc ? compensatePoint(obs[i].raw, obs[i].dt, vc) : obs[i].raw;
           c[i].ref = keyframe.features.xy[obs[i].ref_index];
+          if (!keyframe.structure.empty()) shapes.push_back(keyframe.structure[obs[i].ref_index]);
         }
-        T = refinePose(c, T, params.refine).pose;
+        T = refinePose(c, T, params.refine, shapes).pose;
         v = twistFromDelta((keyframe.pose + T) - last_pose, dt);
       }
     };
@@ -418,15 +436,22 @@ struct RadarOdometry::Impl {
           const Eigen::Vector2d q =
               mc ? compensatePoint(obs[i].raw, obs[i].dt, cur_compensation) : obs[i].raw;
           const Eigen::Vector2d pred(c * q.x() - s * q.y() + T.x, s * q.x() + c * q.y() + T.y);
-          if ((pred - keyframe.features.xy[obs[i].ref_index]).squaredNorm() < gate2)
-            step.keyframe_observations.push_back(
-                {obs[i].ref_index, i < inliers.size() ? inliers[i].cur_index : -1, q});
+          if ((pred - keyframe.features.xy[obs[i].ref_index]).squaredNorm() < gate2) {
+            KeyframeObservation o{obs[i].ref_index, i < inliers.size() ? inliers[i].cur_index : -1, q};
+            if (!keyframe.structure.empty()) {  // the same patch, turned into the new keyframe's frame
+              Eigen::Matrix2d r;
+              r << c, -s, s, c;
+              o.information = r.transpose() * keyframe.structure[obs[i].ref_index] * r;
+            }
+            step.keyframe_observations.push_back(o);
+          }
         }
         f.pose = step.pose;
         makeDopplerKeyframe(f, scan_in, cur_compensation, mc, step);
         keyframe = std::move(f);
         step.new_keyframe = true;
         step.keyframe_points = keyframe.features.xy;
+        step.keyframe_structure = keyframe.structure;
       }
     } else {
       // Tracking loss: constant-velocity prediction, re-initialise on this scan.
@@ -443,6 +468,7 @@ struct RadarOdometry::Impl {
         keyframe = std::move(f);
         step.new_keyframe = true;
         step.keyframe_points = keyframe.features.xy;
+        step.keyframe_structure = keyframe.structure;
       }
       if (!step.implausible)  // (an implausible estimate was reported where it was found)
         logger().logFmt(mrpt::system::LVL_WARN, "odometry: tracking lost at %.3f s (%d matches, %d inliers)",

@@ -58,6 +58,8 @@ void loadParams(const YamlParams& yaml, OdometryParams& p) {
   r.get("huber_m", p.refine.huber_m, Range::above(0, 100));
   r.get("azimuth_sigma_rad", p.refine.azimuth_sigma_rad, Range::closed(0, 1));
   r.get("range_sigma_m", p.refine.range_sigma_m, Range::closed(0, 10));
+  r.get("structure_information", p.refine.structure.enabled);
+  r.get("beam_blur_tolerance_deg", p.refine.structure.beam_blur_tolerance_deg, Range::closed(0, 90));
 
   const YamlParams k = odo.section("keyframes");
   k.get("max_translation_m", p.keyframes.max_translation_m, Range::above(0, 1000));

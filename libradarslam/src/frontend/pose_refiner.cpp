@@ -22,19 +22,21 @@ Eigen::Matrix2d information(const Correspondence& m, const RefineParams& p) {
 }  // namespace
 
 RefineResult refinePose(const Correspondences& matches, const mrpt::math::TPose2D& initial,
-                        const RefineParams& params) {
+                        const RefineParams& params, std::span<const Eigen::Matrix2d> shapes) {
   RefineResult out;
   out.pose = initial;
   if (matches.size() < 2) return out;
+  const bool shaped = shapes.size() == matches.size();
   double x = initial.x, y = initial.y, th = initial.phi;
   for (int it = 0; it < params.iterations; ++it) {
     const double c = std::cos(th), s = std::sin(th);
     Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
     Eigen::Vector3d b = Eigen::Vector3d::Zero();
-    for (const auto& m : matches) {
+    for (std::size_t i = 0; i < matches.size(); ++i) {
+      const Correspondence& m = matches[i];
       const double px = m.cur.x(), py = m.cur.y();
       const Eigen::Vector2d r(m.ref.x() - (c * px - s * py + x), m.ref.y() - (s * px + c * py + y));
-      const Eigen::Matrix2d W = information(m, params);
+      const Eigen::Matrix2d W = shaped ? shapes[i] : information(m, params);
       const double e = std::sqrt(r.dot(W * r));
       const double w = m.weight * (e <= params.huber_m ? 1.0 : params.huber_m / e);
       // d(T (+) p)/d(x, y, th)

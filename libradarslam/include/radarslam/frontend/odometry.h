@@ -41,6 +41,8 @@ struct KeyframeObservation {
   int ref_index = -1;  ///< the previous keyframe's keypoint
   int cur_index = -1;  ///< the new keyframe's keypoint at that landmark (a descriptor inlier), or -1
   Eigen::Vector2d xy;  ///< measured position, new keyframe frame
+  /// The information shape of `xy` (structure_information.h), new keyframe frame; identity = isotropic.
+  Eigen::Matrix2d information = Eigen::Matrix2d::Identity();
 };
 
 struct OdometryStep {
@@ -64,6 +66,8 @@ struct OdometryStep {
   /// was tracked (not a re-initialisation), where the final estimate saw the previous keyframe's
   /// keypoints in the new keyframe (keyframe_observations).
   std::vector<Eigen::Vector2d> keyframe_points;
+  /// Their information shapes (structure_information.h); empty when not estimated (isotropic).
+  std::vector<Eigen::Matrix2d> keyframe_structure;
   std::vector<KeyframeObservation> keyframe_observations;
   StageTimes times;
 };
