@@ -45,7 +45,8 @@ BAReport solveLocalBundleAdjustment(BAProblem& pb, const LocalMappingParams& par
   // The observation costs live in one deque (a few allocations instead of one per residual); the
   // problem owns only the few prior costs.
   std::deque<slam_detail::ObservationCost> observation_costs;  // not movable: no reallocation
-  for (const auto& o : pb.observations) observation_costs.emplace_back(o.z, params.observation_sigma_m);
+  for (const auto& o : pb.observations)
+    observation_costs.emplace_back(o.z, params.observation_sigma_m, o.information);
   std::vector<std::unique_ptr<ceres::CostFunction>> prior_costs;
   ceres::Problem::Options po;
   po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -93,7 +94,8 @@ BAReport solveLocalBundleAdjustment(BAProblem& pb, const LocalMappingParams& par
     const double c = std::cos(q.phi), s = std::sin(q.phi);
     const Eigen::Vector2d d = pb.points[o.point] - Eigen::Vector2d(q.x, q.y);
     const Eigen::Vector2d zl(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
-    report.outliers += (zl - o.z).norm() > gate;
+    const Eigen::Vector2d e = zl - o.z;
+    report.outliers += std::sqrt(e.dot(o.information * e)) > gate;
   }
   return report;
 }

@@ -11,6 +11,20 @@
 
 namespace radarslam::slam_detail {
 
+namespace {
+// An observation's information shape, stored in three floats (xx, xy, yy) per map point observation.
+constexpr std::array<float, 3> kIsotropic{1.0f, 0.0f, 1.0f};
+std::array<float, 3> compact(const Eigen::Matrix2d& w) {
+  return {static_cast<float>(w(0, 0)), static_cast<float>(0.5 * (w(0, 1) + w(1, 0))),
+          static_cast<float>(w(1, 1))};
+}
+Eigen::Matrix2d expand(const std::array<float, 3>& s) {
+  Eigen::Matrix2d w;
+  w << s[0], s[1], s[1], s[2];
+  return w;
+}
+}  // namespace
+
 void LocalMapper::describe(KeyframeJob& job) const {
   const auto t0 = std::chrono::steady_clock::now();
   auto cloud = std::make_shared<std::vector<RadarPoint>>(motionCompensated(
@@ -40,6 +54,7 @@ void LocalMapper::insert(const KeyframeJob& job) {
   kf.descriptor_flipped = job.descriptor_flipped;
   kf.cloud = job.cloud;
   kf.keypoints = job.keypoints;
+  kf.keypoint_structure = job.structure;
   kf.keypoint_point.assign(job.keypoints.size(), -1);
   kf.keypoint_offset.assign(job.keypoints.size(), Eigen::Vector2d::Zero());
   {
@@ -82,13 +97,15 @@ void LocalMapper::associate(SlamKeyframe& kf, const KeyframeJob& job) {
       SlamMapPoint mp;
       mp.xy = transformPoint(prev.pose, prev.keypoints[pi]);
       mp.reference = prev.id;
-      mp.observations.push_back({prev.id, prev.keypoints[pi]});
+      mp.observations.push_back(
+          {prev.id, prev.keypoints[pi],
+           prev.keypoint_structure.empty() ? kIsotropic : compact(prev.keypoint_structure[pi])});
       id = static_cast<std::int64_t>(state_.points.size());
       state_.points.push_back(std::move(mp));
     }
     const Eigen::Vector2d& d = prev.keypoint_offset[pi];
     const Eigen::Vector2d z = o.xy + Eigen::Vector2d(c * d.x() + s * d.y(), -s * d.x() + c * d.y());
-    state_.points[id].observations.push_back({kf.id, z});
+    state_.points[id].observations.push_back({kf.id, z, compact(o.information)});
     if (ci >= 0) {
       kf.keypoint_point[ci] = id;
       kf.keypoint_offset[ci] = z - kf.keypoints[ci];
@@ -111,6 +128,7 @@ void LocalMapper::retire(std::uint64_t id) {
     }
   }
   kf.keypoints = {};
+  kf.keypoint_structure = {};
   kf.keypoint_point = {};
   kf.keypoint_offset = {};
 }
@@ -149,7 +167,7 @@ void LocalMapper::bundleAdjust(std::uint64_t newest) {
         pb.points.push_back(state_.points[p].xy);
         point_ids.push_back(static_cast<std::size_t>(p));
         for (const auto& o : state_.points[p].observations)
-          pb.observations.push_back({addPose(o.keyframe, o.keyframe < first), j, o.z});
+          pb.observations.push_back({addPose(o.keyframe, o.keyframe < first), j, o.z, expand(o.shape)});
       }
     }
     for (std::uint64_t id = first + 1; id <= newest; ++id)

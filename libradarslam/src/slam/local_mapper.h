@@ -24,6 +24,7 @@ struct KeyframeJob {
   double travelled_m = 0;
   BodyVelocity velocity;
   std::vector<Eigen::Vector2d> keypoints;
+  std::vector<Eigen::Matrix2d> structure;         ///< OdometryStep::keyframe_structure
   std::vector<KeyframeObservation> observations;  ///< OdometryStep::keyframe_observations
   std::shared_ptr<const CObservationRadarScan> scan;
   // Filled by LocalMapper::describe() (threaded: in a stage of its own, before insert()).

@@ -173,6 +173,7 @@ struct RadarSlam::Impl {
       job.travelled_m = travelled;
       job.velocity = o.velocity;
       job.keypoints = o.keyframe_points;
+      job.structure = o.keyframe_structure;
       job.observations = o.keyframe_observations;
       job.scan = std::make_shared<CObservationRadarScan>(scan);
       if (params.threads >= 2) {

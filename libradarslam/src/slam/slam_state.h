@@ -4,6 +4,7 @@
 #include <mrpt/math/TPose2D.h>
 #include <Eigen/Core>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -59,7 +60,8 @@ struct SlamKeyframe {
   M2DPDescriptor descriptor, descriptor_flipped;
   // Local mapping's association data, kept while the keyframe is in the BA window.
   std::vector<Eigen::Vector2d> keypoints;
-  std::vector<std::int64_t> keypoint_point;  ///< map point index per keypoint, or -1
+  std::vector<Eigen::Matrix2d> keypoint_structure;  ///< information shape per keypoint (empty: isotropic)
+  std::vector<std::int64_t> keypoint_point;         ///< map point index per keypoint, or -1
   /// Per keypoint of an existing map point: that point's observation here minus the keypoint (the
   /// detector's position of the landmark differs from where the point's first patch was measured);
   /// the next keyframe's measurement of this keypoint is shifted by it, so a point's observations
@@ -73,6 +75,8 @@ struct SlamMapPoint {
   struct Observation {
     std::uint64_t keyframe;
     Eigen::Vector2d z;  ///< sensor frame
+    /// z's information shape (frontend/structure_information.h): xx, xy, yy; isotropic by default.
+    std::array<float, 3> shape{1.0f, 0.0f, 1.0f};
   };
   std::vector<Observation> observations;
   bool culled = false;

@@ -20,6 +20,9 @@ struct BAObservation {
   std::size_t keyframe = 0;  ///< index into BAProblem::poses
   std::size_t point = 0;     ///< index into BAProblem::points
   Eigen::Vector2d z;         ///< sensor frame
+  /// The shape of z's information (frontend/structure_information.h): the residual is weighed by it
+  /// (point to line on walls); identity = isotropic.
+  Eigen::Matrix2d information = Eigen::Matrix2d::Identity();
 };
 
 struct BAPrior {
