@@ -289,6 +289,36 @@ TEST(RelocTracker, AWidePredictionIsAReacquisitionThatTestsTheOtherAlignments) {
   }
 }
 
+TEST(RelocTracker, AnotherAlignmentIsARivalOnlyWhenTheScanCannotTellItFromTheBest) {
+  // The street with a post every 4 m, and two fences across it near x = 12 m: 4 m along the street
+  // the posts and walls fit as well, the fences (a few percent of the scan) do not. The fit score of
+  // that alignment is ~0.95 of the best's, "almost as well" by any fixed ratio; its robust cost is
+  // higher by far more than the chi^2(3) bound in the registration's own units, so the scan tells
+  // the two apart: the one alignment is kept, unique, and trusted.
+  std::vector<Eigen::Vector2d> pts = streetWithPosts(4.0);
+  for (double y = -5; y <= 3; y += 0.2) pts.emplace_back(12.0, y), pts.emplace_back(13.5, y);
+  const KeyframeMap map = oneKeyframeMap(pts);
+  MapTrackerParams params = wholeStreetParams();
+  const mrpt::math::TPose2D predicted{2.8, 0.1, 0.0};
+  const Eigen::Matrix3d wide = Eigen::Vector3d(4.0, 0.01, 1e-4).asDiagonal();
+  {
+    MapTracker tracker(map, params);
+    const TrackResult r = tracker.track(scanOf(pts, -50, 50), predicted, -1, &wide);
+    EXPECT_TRUE(r.reacquisition);
+    EXPECT_FALSE(r.reacquisition_ambiguous);
+    EXPECT_TRUE(r.accepted) << r.reason;
+    EXPECT_LT(std::hypot(r.icp.pose.x, r.icp.pose.y), 0.1) << "the fences' alignment is kept";
+  }
+  {  // Every other alignment counted as a rival: the look-alike 4 m on makes it ambiguous.
+    params.rival_chi2 = 1e12;
+    MapTracker tracker(map, params);
+    const TrackResult r = tracker.track(scanOf(pts, -50, 50), predicted, -1, &wide);
+    expectAmbiguousReacquisition(r);
+    EXPECT_LT(std::hypot(r.icp.pose.x, r.icp.pose.y), 0.1);
+    EXPECT_GT(r.icp.covariance(0, 0), 4.0 / 2 * 0.9) << "the look-alike's spread";
+  }
+}
+
 TEST(RelocTracker, AWideHeadingPredictionTestsTheOtherHeadings) {
   // A round place: a circular wall 30 m away and a post every 10 deg at 20 m. Turned by 10 deg it
   // looks the same. The prediction's heading is 9 deg off and known to +-15 deg (3 sigma, beyond

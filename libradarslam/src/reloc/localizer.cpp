@@ -76,6 +76,11 @@ Eigen::Matrix3d mapChainCovariance(const KeyframeMap& map, long a, long b, const
   }
   return cov;
 }
+/// The tracker's check (h) bounds its rivals as the integrity checks bound an innovation.
+MapTrackerParams withRivalBound(MapTrackerParams t, const IntegrityParams& ip) {
+  t.rival_chi2 = chi2Quantile3(ip.chi2_probability);
+  return t;
+}
 }  // namespace
 
 bool compensatesMap(const KeyframeMap& map, const LocalizerParams& params) {
@@ -125,7 +130,7 @@ struct Localizer::Impl {
           return o;
         }()),
         global(map, p.global),
-        tracker(map, p.tracker),
+        tracker(map, withRivalBound(p.tracker, p.integrity)),
         chi2_threshold(chi2Quantile3(p.integrity.chi2_probability)),
         fits(p.integrity),
         window(p.integrity),

@@ -102,15 +102,27 @@ Eigen::Matrix3d MapTracker::reacquire(const std::vector<Eigen::Vector2d>& thinne
     IcpResult r = submap_->registerThinned(thinned, start, params_.icp);
     if (r.inliers >= params_.min_inliers) found.push_back(std::move(r));
   }
-  // The first best wins a tie: the registration from the prediction itself.
-  const auto best = std::max_element(found.begin(), found.end(), [](const IcpResult& a, const IcpResult& b) {
-    return a.fit_score < b.fit_score;
+  // The registration's likelihood in its own (calibrated) units: 2 cost / (covariance_scale sigma^2),
+  // whose differences are d^T Sigma^-1 d near a minimum (IcpResult::cost); sigma^2 of the
+  // registration from the prediction, so that every alignment is measured in one unit.
+  const double unit = params_.icp.covariance_scale * std::max(found.front().sigma2, 1e-12);
+  const Eigen::Matrix3d prior_information = predicted_cov.inverse();
+  auto posterior = [&](const IcpResult& r) {
+    const Eigen::Vector3d d(r.pose.x - predicted.x, r.pose.y - predicted.y,
+                            std::remainder(r.pose.phi - predicted.phi, 2 * M_PI));
+    return 2 * r.cost / unit + d.dot(prior_information * d);
+  };
+  // Kept: the most probable alignment given the prediction (the first on a tie: the registration
+  // from the prediction itself).
+  const auto best = std::min_element(found.begin(), found.end(), [&](const IcpResult& a, const IcpResult& b) {
+    return posterior(a) < posterior(b);
   });
   const IcpResult kept = *best;
+  // A rival: another alignment the scan itself does not tell from the kept one, its likelihood
+  // within the chi^2(3) bound (rival_chi2) of the kept's; the prediction, wide here, is not asked.
   int rivals = 0;
   for (const IcpResult& r : found) {
-    if (!differentAlignments(r, kept, params_.icp) ||
-        r.fit_score < params_.ambiguity_fit_ratio * kept.fit_score)
+    if (!differentAlignments(r, kept, params_.icp) || 2 * (r.cost - kept.cost) / unit > params_.rival_chi2)
       continue;
     const Eigen::Vector3d d(r.pose.x - kept.pose.x, r.pose.y - kept.pose.y,
                             std::remainder(r.pose.phi - kept.pose.phi, 2 * M_PI));

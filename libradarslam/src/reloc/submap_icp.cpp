@@ -203,7 +203,10 @@ IcpResult LocalSubmap::registerThinned(const std::vector<Vec2>& src, const mrpt:
   double sum_wr2 = 0;
   std::size_t dims = 0, inliers = 0;
   double sum_in_d2 = 0;
+  double cost = 0;
   const double c2 = params.cauchy_m * params.cauchy_m;
+  // The Cauchy loss whose IRLS weight is w below: rho(r) = c^2 / 2 log(1 + r^2 / c^2).
+  auto rho = [c2](double r2) { return 0.5 * c2 * std::log1p(r2 / c2); };
   bool final_pass = false;
   for (int it = 0;; ++it) {
     const double gate =
@@ -217,11 +220,16 @@ IcpResult LocalSubmap::registerThinned(const std::vector<Vec2>& src, const mrpt:
     dims = 0;
     inliers = 0;
     sum_in_d2 = 0;
+    cost = 0;
+    const double outlier_cost = rho(gate2);
     for (const Vec2& p : src) {
       const Vec2 rp(c * p.x() - s * p.y(), s * p.x() + c * p.y());
       const Vec2 q(rp.x() + x, rp.y() + y);
       const auto [d2, idx] = impl_->index.nearest(q);
-      if (d2 > gate2) continue;
+      if (d2 > gate2) {
+        cost += outlier_cost;
+        continue;
+      }
       ++inliers;
       sum_in_d2 += d2;
       const Vec2 e = q - impl_->index.points()[idx];
@@ -233,6 +241,7 @@ IcpResult LocalSubmap::registerThinned(const std::vector<Vec2>& src, const mrpt:
         H += w * J * J.transpose();
         g += w * J * r;
         sum_wr2 += w * r * r;
+        cost += rho(r * r);
         dims += 1;
       } else {
         const double w = 1.0 / (1.0 + d2 / c2);
@@ -241,6 +250,7 @@ IcpResult LocalSubmap::registerThinned(const std::vector<Vec2>& src, const mrpt:
         H += w * J.transpose() * J;
         g += w * J.transpose() * e;
         sum_wr2 += w * d2;
+        cost += rho(d2);
         dims += 2;
       }
     }
@@ -260,8 +270,10 @@ IcpResult LocalSubmap::registerThinned(const std::vector<Vec2>& src, const mrpt:
   res.inliers = inliers;
   res.fit_score = static_cast<double>(inliers) / static_cast<double>(src.size());
   res.rms_m = inliers > 0 ? std::sqrt(sum_in_d2 / static_cast<double>(inliers)) : 0;
+  res.cost = cost;
   const double sigma2 = std::max(params.min_sigma_m * params.min_sigma_m,
                                  dims > 3 ? sum_wr2 / static_cast<double>(dims - 3) : 0.0);
+  res.sigma2 = sigma2;
   // sigma^2 H^-1 through the eigen decomposition: a direction the geometry does not constrain (a
   // corridor along its walls) gets a huge variance instead of making the inverse fail.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(0.5 * (H + H.transpose()));

@@ -46,11 +46,16 @@ struct MapTrackerParams {
   /// along a wall, a wrong stretch of the same wall agrees with it). The scan is then also
   /// registered from up to this many starts on each side of the prediction along each wide axis,
   /// spaced by the ICP's capture range (icp.max_correspondence_m; in heading the capture range
-  /// above) out to 3 sigma. The best fit is kept; other alignments (> the inlier gate or 1 deg
-  /// apart) fitting >= ambiguity_fit_ratio as well (check (d)'s ambiguity) make it ambiguous:
-  /// `degenerate`, with their spread (second moment about the kept one) added to its covariance.
-  /// 0 = off; valid [0, 10].
+  /// above) out to 3 sigma. The lowest robust cost (IcpResult::cost) is kept; other alignments
+  /// (> the inlier gate or 1 deg apart) whose cost the scan does not tell from it (rival_chi2) make
+  /// it ambiguous: `degenerate`, with their spread (second moment about the kept one) added to its
+  /// covariance. 0 = off; valid [0, 10].
   int reacquisition_starts = 2;
+  /// Check (h)'s bound on a rival: 2 (cost - kept cost) / (icp.covariance_scale sigma^2) <= this, the
+  /// likelihood ratio in the registration's calibrated units (= d^T Sigma^-1 d near the minimum).
+  /// Not read from YAML: the localiser sets it to the chi^2(3) quantile of
+  /// integrity.chi2_probability, the bound of its other checks (default: that of 0.999).
+  double rival_chi2 = 16.266;
 
   /// The ICP's heading capture range: its correspondence gate (icp.max_correspondence_m) seen at
   /// the submap's radius, in radians. Two headings closer than this converge to one alignment.

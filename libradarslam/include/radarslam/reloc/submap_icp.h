@@ -85,6 +85,12 @@ struct IcpResult {
   std::size_t inliers = 0;
   std::size_t scan_points = 0;
   double rms_m = 0;  ///< inlier residual RMS
+  /// The robust cost at the solution: the Cauchy loss rho(r) = cauchy_m^2 / 2 log(1 + r^2 /
+  /// cauchy_m^2) of each inlier's residual, rho(inlier_distance_m) for each scan point beyond the
+  /// gate. Near the minimum cost - cost_min = d^T H d / 2, so two registrations of one scan compare
+  /// as a likelihood ratio: 2 (cost_b - cost_a) / (covariance_scale sigma2) (MapTracker, check (h)).
+  double cost = 0;
+  double sigma2 = 0;  ///< the residual variance of sigma^2 H^-1 (before covariance_scale and the floors)
   /// The better fit score of the solution shifted by +-IcpParams::profile_shift_m along
   /// weak_direction (0 when not evaluated).
   double profile_fit = 0;
