@@ -257,6 +257,16 @@ void expectAmbiguousReacquisition(const TrackResult& r) {
   EXPECT_TRUE(r.degenerate) << r.reason;
 }
 
+// Registers the street's scan from `predicted`, a prediction known to +-6 m (3 sigma) along the
+// street (check (h) re-acquires).
+TrackResult trackWideAlongTheStreet(const std::vector<Eigen::Vector2d>& pts, const MapTrackerParams& params,
+                                    const mrpt::math::TPose2D& predicted) {
+  const KeyframeMap map = oneKeyframeMap(pts);
+  MapTracker tracker(map, params);
+  const Eigen::Matrix3d wide = Eigen::Vector3d(4.0, 0.01, 1e-4).asDiagonal();
+  return tracker.track(scanOf(pts, -50, 50), predicted, -1, &wide);
+}
+
 TEST(RelocTracker, AWidePredictionIsAReacquisitionThatTestsTheOtherAlignments) {
   // After a degraded stretch the prediction is known to +-6 m (3 sigma) along the street. The
   // registration from it lands on the look-alike post 4 m on; the fit profile (2 m) does not see
@@ -269,8 +279,7 @@ TEST(RelocTracker, AWidePredictionIsAReacquisitionThatTestsTheOtherAlignments) {
   const mrpt::math::TPose2D predicted{3.6, 0.1, 0.0};
   const Eigen::Matrix3d wide = Eigen::Vector3d(4.0, 0.01, 1e-4).asDiagonal();
   {
-    MapTracker tracker(map, params);
-    const TrackResult r = tracker.track(scanOf(pts, -50, 50), predicted, -1, &wide);
+    const TrackResult r = trackWideAlongTheStreet(pts, params, predicted);
     expectAmbiguousReacquisition(r);
     EXPECT_GT(r.icp.covariance(0, 0), 4.0) << "the alignments' spread along the street";
     EXPECT_LT(r.icp.covariance(1, 1), 0.1) << "across it the walls still fix the position";
@@ -297,13 +306,10 @@ TEST(RelocTracker, AnotherAlignmentIsARivalOnlyWhenTheScanCannotTellItFromTheBes
   // the two apart: the one alignment is kept, unique, and trusted.
   std::vector<Eigen::Vector2d> pts = streetWithPosts(4.0);
   for (double y = -5; y <= 3; y += 0.2) pts.emplace_back(12.0, y), pts.emplace_back(13.5, y);
-  const KeyframeMap map = oneKeyframeMap(pts);
   MapTrackerParams params = wholeStreetParams();
   const mrpt::math::TPose2D predicted{2.8, 0.1, 0.0};
-  const Eigen::Matrix3d wide = Eigen::Vector3d(4.0, 0.01, 1e-4).asDiagonal();
   {
-    MapTracker tracker(map, params);
-    const TrackResult r = tracker.track(scanOf(pts, -50, 50), predicted, -1, &wide);
+    const TrackResult r = trackWideAlongTheStreet(pts, params, predicted);
     EXPECT_TRUE(r.reacquisition);
     EXPECT_FALSE(r.reacquisition_ambiguous);
     EXPECT_TRUE(r.accepted) << r.reason;
@@ -311,8 +317,7 @@ TEST(RelocTracker, AnotherAlignmentIsARivalOnlyWhenTheScanCannotTellItFromTheBes
   }
   {  // Every other alignment counted as a rival: the look-alike 4 m on makes it ambiguous.
     params.rival_chi2 = 1e12;
-    MapTracker tracker(map, params);
-    const TrackResult r = tracker.track(scanOf(pts, -50, 50), predicted, -1, &wide);
+    const TrackResult r = trackWideAlongTheStreet(pts, params, predicted);
     expectAmbiguousReacquisition(r);
     EXPECT_LT(std::hypot(r.icp.pose.x, r.icp.pose.y), 0.1);
     EXPECT_GT(r.icp.covariance(0, 0), 4.0 / 2 * 0.9) << "the look-alike's spread";
