@@ -46,9 +46,10 @@ struct MapTrackerParams {
   /// along a wall, a wrong stretch of the same wall agrees with it). The scan is then also
   /// registered from up to this many starts on each side of the prediction along each wide axis,
   /// spaced by the ICP's capture range (icp.max_correspondence_m; in heading the capture range
-  /// above) out to 3 sigma. The lowest robust cost (IcpResult::cost) is kept; other alignments
-  /// (> the inlier gate or 1 deg apart) whose cost the scan does not tell from it (rival_chi2) make
-  /// it ambiguous: `degenerate`, with their spread (second moment about the kept one) added to its
+  /// above) out to 3 sigma. The most probable alignment given the prediction (robust cost,
+  /// IcpResult::cost, plus the prediction's Mahalanobis term) is kept; other alignments (> the
+  /// inlier gate or 1 deg apart) whose cost the scan does not tell from it (rival_chi2) make it
+  /// ambiguous: `degenerate`, with their spread (second moment about the kept one) added to its
   /// covariance. 0 = off; valid [0, 10].
   int reacquisition_starts = 2;
   /// Check (h)'s bound on a rival: 2 (cost - kept cost) / (icp.covariance_scale sigma^2) <= this, the
