@@ -263,10 +263,10 @@ TEST_F(LocalizeIntegrity, MapWithTheSameStreetTwiceIsTrackedOnOneCopyAndReported
   EXPECT_GE(ambiguous, 10u) << "the second copy was never reported";
 }
 
-/// Where every registration is flat along its weakest direction (here forced: tracker.
-/// flat_profile_ratio 0 makes any fit profile flat), a verified global fix refines only to a
-/// `degenerate` registration. localization.degraded_fixes reports it `degraded` (check
-/// `degenerate_fix`) with the refinement's inflated covariance and tracks on from it; without it
+/// Where every registration is flat along its weakest direction (here forced: a 1 cm
+/// tracker.icp.profile_shift_m, which no scan can tell from its solution), a verified global fix refines only
+/// to a `degenerate` registration. localization.degraded_fixes reports it `degraded` (check `degenerate_fix`)
+/// with the refinement's inflated covariance and tracks on from it; without it
 /// (RADARSLAM_TEST_NO_DEGRADED_FIXES=1) every scan stays `lost`. Nothing may be trusted, and the
 /// degraded poses must lie within their own 3 sigma.
 TEST_F(LocalizeIntegrity, AFixInAFlatPlaceIsReportedDegradedAndTrackedOn) {
@@ -282,7 +282,7 @@ TEST_F(LocalizeIntegrity, AFixInAFlatPlaceIsReportedDegradedAndTrackedOn) {
       ASSERT_NE(at, std::string::npos) << key;
       loc.replace(at, loc.find_first_of(" \n", at + key.size() + 2) - at, key + ": " + value);
     };
-    set("flat_profile_ratio", "0.0");
+    set("profile_shift_m", "0.01");
     set("degraded_fixes", std::getenv("RADARSLAM_TEST_NO_DEGRADED_FIXES") ? "false" : "true");
     std::ofstream(config) << slurp(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml") << loc;
   }

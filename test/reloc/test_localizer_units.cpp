@@ -211,20 +211,21 @@ TEST(RelocTracker, AStreetThatRepeatsEveryFewMetresIsDegenerateAlongIt) {
       r.icp.covariance.topLeftCorner<2, 2>() - 4.0 * r.icp.weak_direction * r.icp.weak_direction.transpose());
   EXPECT_LT(icp_only.eigenvalues()(1), 100 * icp_only.eigenvalues()(0)) << "the eigenvalue test would pass";
   EXPECT_GT(r.icp.profile_fit, 0.97 * r.icp.fit_score);
+  EXPECT_LE(r.icp.profile_chi2, params.rival_chi2) << "the scan cannot tell the next post from its own";
   EXPECT_FALSE(r.accepted);
   EXPECT_TRUE(r.degenerate) << r.reason;
   EXPECT_GT(std::abs(r.icp.weak_direction.x()), 0.9) << "along the street";
   EXPECT_GT(r.icp.covariance(0, 0), 4.0);
 
   // Off: accepted as well constrained.
-  params.flat_profile_ratio = 1;
+  params.icp.profile_shift_m = 0;
   MapTracker trusting(map, params);
   const TrackResult t = trusting.track(scanOf(pts, -50, 50), {0.3, 0.2, 0.005});
   EXPECT_TRUE(t.accepted) << t.reason;
 
   // Whichever test makes the scan degenerate first (here the position sigma test, made strict),
   // the flat direction still gets the shift's variance.
-  params.flat_profile_ratio = MapTrackerParams{}.flat_profile_ratio;
+  params.icp.profile_shift_m = MapTrackerParams{}.icp.profile_shift_m;
   params.max_position_sigma_m = 1e-3;
   MapTracker strict(map, params);
   const TrackResult s = strict.track(scanOf(pts, -50, 50), {0.3, 0.2, 0.005});
@@ -247,6 +248,47 @@ TEST(RelocTracker, AScatteredSceneHasASteepFitProfile) {
   const TrackResult r = tracker.track(scanOf(pts, -100, 100), {0.2, -0.1, 0.005});
   EXPECT_TRUE(r.accepted) << r.reason;
   EXPECT_LT(r.icp.profile_fit, 0.5 * r.icp.fit_score);
+  EXPECT_GT(r.icp.profile_chi2, 10 * MapTrackerParams{}.rival_chi2);
+}
+
+// Two rows of cars parked side by side (4.5 x 1.8 m outlines, a 2.5 m bay) either side of an aisle.
+std::vector<Eigen::Vector2d> carParkRows() {
+  std::vector<Eigen::Vector2d> pts;
+  for (double x0 = -80; x0 <= 80; x0 += 2.5)
+    for (const double y0 : {3.0, -7.5}) {
+      for (double t = 0; t <= 1.8; t += 0.2) pts.emplace_back(x0 + t, y0), pts.emplace_back(x0 + t, y0 + 4.5);
+      for (double t = 0.2; t < 4.5; t += 0.2)
+        pts.emplace_back(x0, y0 + t), pts.emplace_back(x0 + 1.8, y0 + t);
+    }
+  return pts;
+}
+
+TEST(RelocTracker, ARowOfParkedCarsIsNotFlatWhereItsResidualsTellTheBaysApart) {
+  // 2 m along the rows nearly every point still lies within the 1 m inlier gate of a car (a fit
+  // ratio calls that flat), but the car sides are 0.2 - 0.5 m off: the robust cost tells the
+  // shifted alignment from the solution far beyond the chi^2 bound, so the scan is tracked.
+  const std::vector<Eigen::Vector2d> pts = carParkRows();
+  const KeyframeMap map = oneKeyframeMap(pts);
+  MapTracker tracker(map, wholeStreetParams());
+  const TrackResult r = tracker.track(scanOf(pts, -50, 50), {0.3, 0.2, 0.005});
+  ASSERT_TRUE(r.icp.converged);
+  EXPECT_LT(std::hypot(r.icp.pose.x, r.icp.pose.y), 0.1);
+  EXPECT_GT(r.icp.profile_fit, 0.975 * r.icp.fit_score) << "the bays are within the gate of each other";
+  EXPECT_GT(r.icp.profile_chi2, MapTrackerParams{}.rival_chi2);
+  EXPECT_TRUE(r.accepted) << r.reason;
+}
+
+TEST(RelocTracker, TheFitProfileOfAFeaturelessWallIsFlat) {
+  // One straight wall: shifted along itself the scan fits exactly as well.
+  std::vector<Eigen::Vector2d> pts;
+  for (double x = -80; x <= 80; x += 0.2) pts.emplace_back(x, 6.0);
+  const KeyframeMap map = oneKeyframeMap(pts);
+  MapTracker tracker(map, wholeStreetParams());
+  const TrackResult r = tracker.track(scanOf(pts, -50, 50), {0.3, 0.2, 0.005});
+  EXPECT_LT(r.icp.profile_chi2, 1.0);
+  EXPECT_GT(std::abs(r.icp.weak_direction.x()), 0.99) << "along the wall";
+  EXPECT_FALSE(r.accepted);
+  EXPECT_TRUE(r.degenerate) << r.reason;
 }
 
 // Check (h) found another alignment within a wide prediction: not trusted, fused as degenerate.

@@ -22,7 +22,6 @@ void loadParams(const YamlParams& yaml, MapTrackerParams& p) {
   yaml.get("max_jump_deg", p.max_jump_deg, Range::above(0, 180));
   yaml.get("max_position_sigma_m", p.max_position_sigma_m, Range::above(0, 1000));
   yaml.get("ambiguity_fit_ratio", p.ambiguity_fit_ratio, Range::closed(0, 1));
-  yaml.get("flat_profile_ratio", p.flat_profile_ratio, Range::closed(0, 1));
   yaml.get("reacquisition_starts", p.reacquisition_starts, Range::closed(0, 10));
   p.min_inliers = static_cast<std::size_t>(min_inliers);
   loadParams(yaml.section("submap"), p.submap);
@@ -176,10 +175,11 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
   const double jump_deg = std::abs(std::remainder(r.pose.phi - predicted.phi, 2 * M_PI)) * 180.0 / M_PI;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(r.covariance.topLeftCorner<2, 2>());
   const double sigma_xy = std::sqrt(std::max(0.0, es.eigenvalues()(1)));
-  // Check (g): the cost is flat along the weakest direction, so the position along it is known only
-  // to about the shift, whichever check makes the scan degenerate.
-  const bool flat =
-      checksProfile() && r.profile_fit > 0 && r.profile_fit >= params_.flat_profile_ratio * r.fit_score;
+  // Check (g): the solution shifted by profile_shift_m along the weakest direction is not told apart
+  // from it by the scan (the likelihood ratio within check (h)'s rival bound): the cost is flat
+  // there, the position along it known only to about the shift, whichever check makes the scan
+  // degenerate.
+  const bool flat = checksProfile() && r.profile_chi2 <= params_.rival_chi2;
   auto inflateAlongTheFlatDirection = [&] {
     const double shift2 = params_.icp.profile_shift_m * params_.icp.profile_shift_m;
     out.icp.covariance.topLeftCorner<2, 2>() += shift2 * r.weak_direction * r.weak_direction.transpose();
@@ -206,8 +206,10 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
     if (flat) inflateAlongTheFlatDirection();
   } else if (flat) {
     std::snprintf(buf, sizeof buf,
-                  "flat along its weakest direction: fit %.2f shifted %.1f m, %.2f at the solution",
-                  r.profile_fit, params_.icp.profile_shift_m, r.fit_score);
+                  "flat along its weakest direction: likelihood ratio %.1f <= %.1f shifted %.1f m (fit %.2f, "
+                  "%.2f at the solution)",
+                  r.profile_chi2, params_.rival_chi2, params_.icp.profile_shift_m, r.profile_fit,
+                  r.fit_score);
     inflateAlongTheFlatDirection();
     out.degenerate = true;
   } else {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 
 #include "radarslam/core/errors.h"
@@ -143,6 +144,18 @@ struct LocalSubmap::Impl {
       }
     }
     return normal_state[i] == 1 ? &normal[i] : nullptr;
+  }
+
+  /// A placed scan point's share of IcpResult::cost with the final pass's gate (gate2 squared).
+  double pointCost(const Vec2& q, double gate2, const IcpParams& params) const {
+    const double c2 = params.cauchy_m * params.cauchy_m;
+    const auto [d2, idx] = index.nearest(q);
+    if (d2 > gate2) return 0.5 * c2 * std::log1p(gate2 / c2);
+    if (const Vec2* n = lineNormal(idx, params)) {
+      const double r = n->dot(q - index.points()[idx]);
+      return 0.5 * c2 * std::log1p(r * r / c2);
+    }
+    return 0.5 * c2 * std::log1p(d2 / c2);
   }
 };
 
@@ -298,8 +311,12 @@ void LocalSubmap::fitProfile(const std::vector<Vec2>& src, const IcpParams& para
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> exy(res.covariance.topLeftCorner<2, 2>());
   res.weak_direction = exy.eigenvectors().col(1).normalized();
   res.profile_fit = 0;
+  res.profile_chi2 = std::numeric_limits<double>::infinity();
   const double c = std::cos(res.pose.phi), s = std::sin(res.pose.phi),
                gate2 = params.inlier_distance_m * params.inlier_distance_m;
+  // The likelihood ratio of the shifted solution in the registration's calibrated unit (as check (h)
+  // compares two alignments, IcpResult::cost).
+  const double unit = params.covariance_scale * res.sigma2;
   std::vector<Vec2> placed;  // the scan at the solution
   placed.reserve(src.size());
   for (const Vec2& p : src)
@@ -307,9 +324,13 @@ void LocalSubmap::fitProfile(const std::vector<Vec2>& src, const IcpParams& para
   for (const double sign : {-1.0, 1.0}) {
     const Vec2 shift = sign * params.profile_shift_m * res.weak_direction;
     std::size_t n = 0;
-    for (const Vec2& q : placed)
-      if (impl_->index.nearest(q + shift).first <= gate2) ++n;
+    double cost = 0;
+    for (const Vec2& q : placed) {
+      n += impl_->index.nearest(q + shift).first <= gate2;
+      cost += impl_->pointCost(q + shift, gate2, params);
+    }
     res.profile_fit = std::max(res.profile_fit, static_cast<double>(n) / static_cast<double>(src.size()));
+    if (unit > 0) res.profile_chi2 = std::min(res.profile_chi2, 2 * (cost - res.cost) / unit);
   }
 }
 

@@ -31,14 +31,6 @@ struct MapTrackerParams {
   /// this fraction of the tracked alignment's fit score: reported as ambiguous; valid [0, 1]
   /// (1 = only an equally good second copy; 0 = any alignment of the other copy).
   double ambiguity_fit_ratio = 0.8;
-  /// The registration keeps at least this fraction of its fit score with the solution shifted by
-  /// icp.profile_shift_m along its weakest direction (IcpResult::profile_fit): the cost is flat
-  /// there (a featureless wall, a row of look-alike posts), the position along it is known only to
-  /// about the shift, whatever sigma^2 H^-1 says. The scan is then `degenerate` (fused with the
-  /// prediction) and its covariance gets profile_shift_m^2 along that direction. The 99th
-  /// percentile of the ratio over the tracked scans of the train sequences (a 1 % false-alarm
-  /// rate; docs/localization.md); valid [0, 1], 1 = off.
-  double flat_profile_ratio = 0.975;
   /// Re-acquisition (check (h)): when the prediction's 3 sigma along its largest xy axis exceeds
   /// icp.inlier_distance_m (what tells two alignments apart), or its heading 3 sigma exceeds the
   /// ICP's heading capture range (icp.max_correspondence_m over submap.radius_m), the registration
@@ -54,6 +46,12 @@ struct MapTrackerParams {
   int reacquisition_starts = 2;
   /// Check (h)'s bound on a rival: 2 (cost - kept cost) / (icp.covariance_scale sigma^2) <= this, the
   /// likelihood ratio in the registration's calibrated units (= d^T Sigma^-1 d near the minimum).
+  /// Check (g) (the fit profile, on when icp.profile_shift_m > 0) asks the same of the solution
+  /// shifted by icp.profile_shift_m along its weakest direction (IcpResult::profile_chi2): within
+  /// the bound the cost is flat there (a featureless wall, a row of look-alike posts) and the
+  /// position along it is known only to about the shift, whatever sigma^2 H^-1 says. The scan is
+  /// then `degenerate` (fused with the prediction) and its covariance gets profile_shift_m^2 along
+  /// that direction.
   /// Not read from YAML: the localiser sets it to the chi^2(3) quantile of
   /// integrity.chi2_probability, the bound of its other checks (default: that of 0.999).
   double rival_chi2 = 16.266;
@@ -70,7 +68,7 @@ void loadParams(const YamlParams& yaml, MapTrackerParams& params);
 struct TrackResult {
   bool accepted = false;
   std::string reason;  ///< why not (empty when accepted)
-  /// Rejected only by max_position_sigma_m or flat_profile_ratio (a weak direction, e.g. a
+  /// Rejected only by max_position_sigma_m or the fit profile, check (g) (a weak direction, e.g. a
   /// corridor): every other test passed, so the registration can still be fused with a prediction
   /// (reloc/integrity.h).
   bool degenerate = false;
@@ -112,7 +110,7 @@ class MapTracker {
 
  private:
   void rebuild(const mrpt::math::TPose2D& predicted, long anchor);
-  bool checksProfile() const { return params_.flat_profile_ratio < 1; }  ///< check (g) on
+  bool checksProfile() const { return params_.icp.profile_shift_m > 0; }  ///< check (g) on
   /// Check (h): registers the thinned scan from further starts along the prediction's wide axes;
   /// keeps the best fit in out.icp, flags an ambiguity and returns the rival alignments' spread
   /// (zero when there are none), which the caller adds to the covariance.

@@ -16,6 +16,7 @@
 #include <mrpt/math/TPose2D.h>
 #include <Eigen/Core>
 
+#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -67,11 +68,12 @@ struct IcpParams {
   /// grid-s1-clear as sqrt(mean(e^2 - sigma_icp^2)) (docs/localization.md); valid [0, 90] / [0, 100]
   double slam_map_heading_sigma_floor_deg = 0.14;  ///< heading model error, maps of compensated clouds
   double slam_map_position_sigma_floor_m = 0.035;  ///< position model error, maps of compensated clouds
-  /// The fit profile along the weakest position direction: the fit score is also evaluated with the
-  /// solution shifted by +-profile_shift_m along the largest-variance xy eigenvector (IcpResult::
-  /// profile_fit). A cost that stays flat there (a featureless wall) is a direction the curvature
-  /// sigma^2 H^-1 cannot be trusted in, whatever its size. Evaluated when the caller asks for it
-  /// (LocalSubmap::registerScan); 0 = never; valid [0, 100]
+  /// The fit profile along the weakest position direction: the fit score and the robust cost are
+  /// also evaluated with the solution shifted by +-profile_shift_m along the largest-variance xy
+  /// eigenvector (IcpResult::profile_fit, profile_chi2). A cost that stays flat there (a featureless
+  /// wall) is a direction the curvature sigma^2 H^-1 cannot be trusted in, whatever its size.
+  /// Evaluated when the caller asks for it (LocalSubmap::registerScan, MapTracker's check (g));
+  /// 0 = never; valid [0, 100]
   double profile_shift_m = 2.0;
 };
 
@@ -94,6 +96,10 @@ struct IcpResult {
   /// The better fit score of the solution shifted by +-IcpParams::profile_shift_m along
   /// weak_direction (0 when not evaluated).
   double profile_fit = 0;
+  /// The smaller likelihood ratio of those two shifted solutions to this one, 2 (cost_shifted -
+  /// cost) / (covariance_scale sigma2) (infinite when not evaluated): within a chi^2 bound the scan
+  /// cannot tell the shifted position from its own.
+  double profile_chi2 = std::numeric_limits<double>::infinity();
   Eigen::Vector2d weak_direction = Eigen::Vector2d::UnitX();  ///< largest-variance xy direction (unit)
   int iterations = 0;
   bool converged = false;
@@ -132,7 +138,7 @@ class LocalSubmap {
   /// The same for a scan already thinned by thinScan (several starts register it once thinned).
   IcpResult registerThinned(const std::vector<Eigen::Vector2d>& thinned, const mrpt::math::TPose2D& initial,
                             const IcpParams& params) const;
-  /// Fills result.profile_fit and result.weak_direction for the registration `result` of
+  /// Fills result.profile_fit, profile_chi2 and weak_direction for the registration `result` of
   /// `thinned` (nothing when params.profile_shift_m is 0 or it has fewer than 3 inliers).
   void fitProfile(const std::vector<Eigen::Vector2d>& thinned, const IcpParams& params,
                   IcpResult& result) const;
