@@ -78,20 +78,21 @@ void FixHypotheses::advance(std::span<const RadarPoint> cloud, const mrpt::math:
 
 void FixHypotheses::prune() {
   if (live_.empty()) return;
-  // This scan's evidence: each fit over the best.
-  const double best =
-      std::max_element(live_.begin(), live_.end(), [](const FixHypothesis& a, const FixHypothesis& b) {
-        return a.last.icp.fit_score < b.last.icp.fit_score;
-      })->last.icp.fit_score;
-  for (FixHypothesis& h : live_) h.log_ratio += std::log(std::max(h.last.icp.fit_score, 1e-9) / best);
-  // Most supported first (the older one wins a tie): a duplicate alignment keeps the better.
-  std::stable_sort(live_.begin(), live_.end(),
-                   [](const FixHypothesis& a, const FixHypothesis& b) { return a.log_ratio > b.log_ratio; });
+  // This scan's evidence: each robust cost over the best one's, a likelihood ratio in the best
+  // registration's calibrated unit (as MapTracker's check (h) compares two alignments).
   const MapTrackerParams& p = tracker_.params();
-  const double floor = std::log(p.ambiguity_fit_ratio);
+  const IcpResult& best =
+      std::min_element(live_.begin(), live_.end(), [](const FixHypothesis& a, const FixHypothesis& b) {
+        return a.last.icp.cost < b.last.icp.cost;
+      })->last.icp;
+  const double unit = p.icp.covariance_scale * best.sigma2;
+  for (FixHypothesis& h : live_) h.chi2 += unit > 0 ? 2 * (h.last.icp.cost - best.cost) / unit : 0.0;
+  // Most likely first (the older one wins a tie): a duplicate alignment keeps the likelier.
+  std::stable_sort(live_.begin(), live_.end(),
+                   [](const FixHypothesis& a, const FixHypothesis& b) { return a.chi2 < b.chi2; });
   std::vector<FixHypothesis> kept;
   for (FixHypothesis& h : live_) {
-    if (h.log_ratio < floor) break;
+    if (h.chi2 > p.rival_chi2) break;
     const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const FixHypothesis& k) {
       return !differentAlignments(h.last.icp, k.last.icp, p.icp);
     });

@@ -15,10 +15,11 @@
 //   - the registered motion disagrees with the odometry's (chi^2 of the innovation, as the
 //     tracker's check (a)), or the caller's gate (the dead-reckoned prior) rules it out,
 //   - another hypothesis is the same alignment (differentAlignments false: the better one stays),
-//   - the evidence against it adds up: the product over its scans of its fit score over the best
-//     hypothesis's falls below tracker.ambiguity_fit_ratio, the tracker's "fits almost as well"
-//     (checks (d), (h)) applied to the scans together (in a car park a wrong alignment fits 0.83-0.99
-//     as well as the right one scan by scan; 0.95 on every scan is ruled out after 5 scans).
+//   - the evidence against it adds up: the sum over its scans of the likelihood ratio of its
+//     registration to the best hypothesis's (2 delta robust cost in the best's calibrated unit,
+//     IcpResult::cost) exceeds tracker.rival_chi2, the bound of check (h) applied to the scans
+//     together (until 2026-12-06 the product of fit ratios against tracker.ambiguity_fit_ratio: in a
+//     car park a wrong alignment fits 0.83-0.99 as well as the right one scan by scan).
 // A single surviving hypothesis registered in confirm_fixes consecutive scans, which the global
 // search of confirm_fixes scans pointed at (the seed counts; later scans' contested places within the
 // capture range of it), is a fix: what "confirm_fixes agreeing fixes" asks of a verified place, with
@@ -44,10 +45,12 @@
 namespace radarslam {
 
 struct FixHypothesis {
-  TrackResult last;      ///< the latest registration (pose, covariance, anchor, tests' outcome)
-  int scans = 0;         ///< consecutive scans registered
-  int support = 0;       ///< scans whose global search pointed at it (contested places), the seed included
-  double log_ratio = 0;  ///< sum over its scans of log(its fit / the best hypothesis's fit), <= 0
+  TrackResult last;  ///< the latest registration (pose, covariance, anchor, tests' outcome)
+  int scans = 0;     ///< consecutive scans registered
+  int support = 0;   ///< scans whose global search pointed at it (contested places), the seed included
+  /// Sum over its scans of 2 (its robust cost - the best hypothesis's) / (icp.covariance_scale
+  /// sigma^2 of the best): the likelihood ratio against the best, >= 0.
+  double chi2 = 0;
 };
 
 class FixHypotheses {

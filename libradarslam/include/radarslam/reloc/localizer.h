@@ -75,12 +75,10 @@ struct LocalizerParams {
   /// hypothesis, carried with the odometry and registered against the map around it scan after
   /// scan until the map rules all but one out; that one, registered in confirm_fixes consecutive
   /// scans and pointed at by as many global searches, is a fix (reloc/fix_hypotheses.h). false:
-  /// such places stay refused. Off by default: on the train sequences it brought first fixes
-  /// (wall-s12 0 -> 2 of 10 starts, carpark-s16-rain 4 -> 5), but at one start of the train avenue
-  /// the fix was a look-alike 248 m away (the right keyframe never retrieved), and along the curved
-  /// wall the tracking that followed the new fixes went 8-11 deg off with status `tracking` (check
-  /// (g) looks along the weakest xy direction; a curved wall's is a turn about its centre)
-  /// (docs/localization.md, "Contested first fixes").
+  /// such places stay refused. Off by default: on the train sequences it brings first fixes
+  /// (likelihood-ratio pruning: wall-s12 0 -> 3 of 10 starts, carpark-s16-rain 5 -> 7), but at one
+  /// start of the train avenue the fix is a look-alike 248 m away (the right keyframe never
+  /// retrieved) (docs/localization.md, "Contested first fixes").
   bool resolve_contested_fixes = false;
 };
 
