@@ -60,7 +60,8 @@ struct Frame {
   std::vector<Eigen::Vector2d> raw;
   std::vector<double> dt;  ///< firing time of each keypoint relative to the reference time, s
   FeatureSet features;
-  /// Each keypoint's information shape from its image structure (empty: isotropic), in metres.
+  /// Each keypoint's information shape from its image structure, in metres; computed when the frame
+  /// becomes the keyframe (empty: not the keyframe, or isotropic).
   std::vector<Eigen::Matrix2d> structure;
   bool doppler = false;  ///< taken from a Doppler-compensated copy of the scan
 
@@ -126,6 +127,14 @@ struct RadarOdometry::Impl {
     times.describe = msSince(t0);
     t0 = Clock::now();
     if (params.patch_alignment.enabled) f.align = prepareAlignImage(image, params.patch_alignment);
+    times.align_prep = msSince(t0);
+    return f;
+  }
+
+  /// `f` becomes the keyframe: only the keyframe's points are weighed by their structure (eq. (4)
+  /// and local BA), so their shapes are computed here, not for every scan.
+  void setKeyframe(Frame&& f, StageTimes& times) {
+    const auto t0 = Clock::now();
     if (params.refine.structure.enabled && !f.align.smooth.empty()) {
       // The patch whose alignment places the match (patch_radius_px) is the neighbourhood.
       const cv::Point2d o = converter.pixelToMetres(0, 0), ex = converter.pixelToMetres(1, 0),
@@ -138,8 +147,8 @@ struct RadarOdometry::Impl {
                                                    params.patch_alignment.patch_radius_px, pixel_to_metres,
                                                    f.raw[i], params.refine.structure));
     }
-    times.align_prep = msSince(t0);
-    return f;
+    keyframe = std::move(f);
+    times.align_prep += msSince(t0);
   }
 
   /// Outlier rejection (eq. (3) + maximum clique) and the SVD pose; returns the inlier set. With a
@@ -238,7 +247,7 @@ struct RadarOdometry::Impl {
 
     if (!have_keyframe) {
       f.compensate({}, mc);
-      keyframe = std::move(f);
+      setKeyframe(std::move(f), step.times);
       have_keyframe = true;
       last_stamp = step.stamp;
       last_pose = step.pose = {0, 0, 0};
@@ -448,7 +457,7 @@ struct RadarOdometry::Impl {
         }
         f.pose = step.pose;
         makeDopplerKeyframe(f, scan_in, cur_compensation, mc, step);
-        keyframe = std::move(f);
+        setKeyframe(std::move(f), step.times);
         step.new_keyframe = true;
         step.keyframe_points = keyframe.features.xy;
         step.keyframe_structure = keyframe.structure;
@@ -465,7 +474,7 @@ struct RadarOdometry::Impl {
         f.pose = step.pose;
         f.compensate(velocity, mc && velocity_known);
         makeDopplerKeyframe(f, scan_in, velocity, mc && velocity_known, step);
-        keyframe = std::move(f);
+        setKeyframe(std::move(f), step.times);
         step.new_keyframe = true;
         step.keyframe_points = keyframe.features.xy;
         step.keyframe_structure = keyframe.structure;

@@ -26,7 +26,8 @@ enum class TrackingStatus { Initialised, Tracking, Lost, Recovered };
 const char* toString(TrackingStatus s);
 
 /// Wall time of each stage of one scan, milliseconds. `align_prep` smooths the image for patch
-/// alignment; `refine` includes the patch alignment of matches and keyframe points and eq. (4).
+/// alignment (and, for a new keyframe, computes its points' structure shapes); `refine` includes
+/// the patch alignment of matches and keyframe points and eq. (4).
 struct StageTimes {
   double cartesian = 0, detect = 0, describe = 0, align_prep = 0, match = 0, clique = 0, svd = 0, refine = 0;
   double total() const { return cartesian + detect + describe + align_prep + match + clique + svd + refine; }
