@@ -72,12 +72,17 @@ struct SlamKeyframe {
 struct SlamMapPoint {
   Eigen::Vector2d xy;           ///< map frame
   std::uint64_t reference = 0;  ///< keyframe that first saw it: loop corrections move it with that one
+  /// 32 bytes (z is 16-byte aligned): the keyframe id in 32 bits and the shape fill the 16 before z.
   struct Observation {
-    std::uint64_t keyframe;
-    Eigen::Vector2d z;  ///< sensor frame
+    Observation(std::uint64_t keyframe_id, const Eigen::Vector2d& z_sensor,
+                const std::array<float, 3>& shape_xx_xy_yy = {1.0f, 0.0f, 1.0f})
+        : keyframe(static_cast<std::uint32_t>(keyframe_id)), shape(shape_xx_xy_yy), z(z_sensor) {}
+    std::uint32_t keyframe;  ///< 2^32 keyframes would be 34 years of scans at 4 Hz
     /// z's information shape (frontend/structure_information.h): xx, xy, yy; isotropic by default.
-    std::array<float, 3> shape{1.0f, 0.0f, 1.0f};
+    std::array<float, 3> shape;
+    Eigen::Vector2d z;  ///< sensor frame
   };
+  static_assert(sizeof(Observation) == 32);
   std::vector<Observation> observations;
   bool culled = false;
 };
