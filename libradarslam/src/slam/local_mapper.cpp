@@ -114,14 +114,22 @@ void LocalMapper::associate(SlamKeyframe& kf, const KeyframeJob& job) {
 }
 
 void LocalMapper::retire(std::uint64_t id) {
-  // The keyframe leaves the BA window: its association data goes, and so do the map points whose
-  // newest observation it was if too few keyframes saw them (paper: points seen by <= 2 culled).
+  // The keyframe leaves the BA window: its association data goes, and so do the map points seen by
+  // too few keyframes that can gain no more observations (paper: points seen by <= 2 culled). A
+  // point gains one only through the keyframe that registered its newest one (keypoint_point), so it
+  // is complete if that is this keyframe, or if the next keyframe measured it without registering it
+  // (a tracked keyframe point, not a descriptor inlier): no later window reaches such a point.
   SlamKeyframe& kf = state_.keyframes[id];
+  std::unordered_set<std::int64_t> registered_next;
+  if (id + 1 < state_.keyframes.size())
+    registered_next.insert(state_.keyframes[id + 1].keypoint_point.begin(),
+                           state_.keyframes[id + 1].keypoint_point.end());
   for (const std::int64_t p : kf.keypoint_point) {
-    if (p < 0) continue;
+    if (p < 0 || state_.points[p].culled) continue;
     SlamMapPoint& mp = state_.points[p];
-    if (mp.observations.back().keyframe == id &&
-        static_cast<int>(mp.observations.size()) < params_.local_mapping.min_observations) {
+    const std::uint64_t newest = mp.observations.back().keyframe;
+    const bool complete = newest == id || (newest == id + 1 && !registered_next.count(p));
+    if (complete && static_cast<int>(mp.observations.size()) < params_.local_mapping.min_observations) {
       mp.culled = true;
       mp.observations.clear();
       mp.observations.shrink_to_fit();
