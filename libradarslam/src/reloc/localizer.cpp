@@ -76,9 +76,9 @@ Eigen::Matrix3d mapChainCovariance(const KeyframeMap& map, long a, long b, const
   }
   return cov;
 }
-/// The tracker's check (h) bounds its rivals as the integrity checks bound an innovation.
-MapTrackerParams withRivalBound(MapTrackerParams t, const IntegrityParams& ip) {
-  t.rival_chi2 = chi2Quantile3(ip.chi2_probability);
+/// The tracker's checks (g), (h) bound their rivals as the integrity checks bound an innovation.
+MapTrackerParams withRivalBound(MapTrackerParams t, double chi2_threshold) {
+  t.rival_chi2 = chi2_threshold;
   return t;
 }
 }  // namespace
@@ -91,13 +91,13 @@ struct Localizer::Impl {
   std::optional<KeyframeMap> compensated;  ///< only for a map of raw clouds (compensatesMap)
   const KeyframeMap& map;
   LocalizerParams params;
+  double chi2_threshold;  ///< chi^2(3) quantile of integrity.chi2_probability
   RadarOdometry odometry;
   GlobalLocalizer global;
   MapTracker tracker;
   bool have_pose = false;  ///< pose is trusted or dead-reckoned from a trusted one
   mrpt::math::TPose2D pose;
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();  ///< of pose
-  double chi2_threshold;                          ///< chi^2(3) quantile of integrity.chi2_probability
   FitMonitor fits;
   MotionWindow window;
   int missed = 0;       ///< rejected registrations (failed checks) in a row
@@ -124,14 +124,14 @@ struct Localizer::Impl {
                         : std::nullopt),
         map(compensated ? *compensated : map_in),
         params(p),
+        chi2_threshold(chi2Quantile3(p.integrity.chi2_probability)),
         odometry([&] {
           OdometryParams o = op;
           o.matching.adaptive_radius = p.odometry_adaptive_radius;
           return o;
         }()),
         global(map, p.global),
-        tracker(map, withRivalBound(p.tracker, p.integrity)),
-        chi2_threshold(chi2Quantile3(p.integrity.chi2_probability)),
+        tracker(map, withRivalBound(p.tracker, chi2_threshold)),
         fits(p.integrity),
         window(p.integrity),
         hypotheses(tracker, map, chi2_threshold) {}
