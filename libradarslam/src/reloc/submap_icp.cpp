@@ -56,6 +56,9 @@ std::int64_t voxelKey(double x, double y, double voxel) {
   return (ix << 32) ^ (iy & 0xffffffffLL);
 }
 
+/// The Cauchy loss whose IRLS weight the registration uses: rho(r) = c^2 / 2 log(1 + r^2 / c^2).
+double cauchyLoss(double r2, double c2) { return 0.5 * c2 * std::log1p(r2 / c2); }
+
 /// One point per voxel: the centroid of the points in it.
 std::vector<Vec2> voxelCentroids(const std::vector<Vec2>& pts, double voxel) {
   std::unordered_map<std::int64_t, std::size_t> index;
@@ -146,16 +149,18 @@ struct LocalSubmap::Impl {
     return normal_state[i] == 1 ? &normal[i] : nullptr;
   }
 
-  /// A placed scan point's share of IcpResult::cost with the final pass's gate (gate2 squared).
-  double pointCost(const Vec2& q, double gate2, const IcpParams& params) const {
+  /// A placed scan point's share of IcpResult::cost with the final pass's gate (gate2 squared);
+  /// `inlier`: whether it lies within the gate.
+  double pointCost(const Vec2& q, double gate2, const IcpParams& params, bool& inlier) const {
     const double c2 = params.cauchy_m * params.cauchy_m;
     const auto [d2, idx] = index.nearest(q);
-    if (d2 > gate2) return 0.5 * c2 * std::log1p(gate2 / c2);
+    inlier = d2 <= gate2;
+    if (!inlier) return cauchyLoss(gate2, c2);
     if (const Vec2* n = lineNormal(idx, params)) {
       const double r = n->dot(q - index.points()[idx]);
-      return 0.5 * c2 * std::log1p(r * r / c2);
+      return cauchyLoss(r * r, c2);
     }
-    return 0.5 * c2 * std::log1p(d2 / c2);
+    return cauchyLoss(d2, c2);
   }
 };
 
@@ -218,8 +223,7 @@ IcpResult LocalSubmap::registerThinned(const std::vector<Vec2>& src, const mrpt:
   double sum_in_d2 = 0;
   double cost = 0;
   const double c2 = params.cauchy_m * params.cauchy_m;
-  // The Cauchy loss whose IRLS weight is w below: rho(r) = c^2 / 2 log(1 + r^2 / c^2).
-  auto rho = [c2](double r2) { return 0.5 * c2 * std::log1p(r2 / c2); };
+  auto rho = [c2](double r2) { return cauchyLoss(r2, c2); };  // its IRLS weight is w below
   bool final_pass = false;
   for (int it = 0;; ++it) {
     const double gate =
@@ -326,8 +330,9 @@ void LocalSubmap::fitProfile(const std::vector<Vec2>& src, const IcpParams& para
     std::size_t n = 0;
     double cost = 0;
     for (const Vec2& q : placed) {
-      n += impl_->index.nearest(q + shift).first <= gate2;
-      cost += impl_->pointCost(q + shift, gate2, params);
+      bool inlier = false;
+      cost += impl_->pointCost(q + shift, gate2, params, inlier);
+      n += inlier;
     }
     res.profile_fit = std::max(res.profile_fit, static_cast<double>(n) / static_cast<double>(src.size()));
     if (unit > 0) res.profile_chi2 = std::min(res.profile_chi2, 2 * (cost - res.cost) / unit);

@@ -112,8 +112,8 @@ class MapTracker {
   void rebuild(const mrpt::math::TPose2D& predicted, long anchor);
   bool checksProfile() const { return params_.icp.profile_shift_m > 0; }  ///< check (g) on
   /// Check (h): registers the thinned scan from further starts along the prediction's wide axes;
-  /// keeps the best fit in out.icp, flags an ambiguity and returns the rival alignments' spread
-  /// (zero when there are none), which the caller adds to the covariance.
+  /// keeps the most probable alignment given the prediction in out.icp, flags an ambiguity and returns the
+  /// rival alignments' spread (zero when there are none), which the caller adds to the covariance.
   Eigen::Matrix3d reacquire(const std::vector<Eigen::Vector2d>& thinned, const mrpt::math::TPose2D& predicted,
                             const Eigen::Matrix3d& predicted_cov, TrackResult& out) const;
 
