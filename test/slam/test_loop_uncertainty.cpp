@@ -64,6 +64,26 @@ TEST(ChainCovariance, LateralUncertaintyGrowsWithTheCubeOfDistance) {
   EXPECT_NEAR(far / near, 8.0, 1.0);
 }
 
+TEST(GraphPathLength, AnAcceptedLoopIsAShortcutAndASessionStartACut) {
+  SlamState s;
+  fillChain(s, 100, 2.0, 0.0);  // odometry edges of ~2 m (2.0 forward, 0.1 sin(i) sideways)
+  const double driven = graphPathLength(s, 10, 90);
+  EXPECT_NEAR(driven, 160.0, 1.0);
+  EXPECT_DOUBLE_EQ(graphPathLength(s, 90, 10), driven);
+  // A loop 20 -> 85: 10 -> 20 -> 85 -> 90 is 30 m of odometry.
+  AcceptedLoop loop;
+  loop.from = 20;
+  loop.to = 85;
+  s.loops.push_back(loop);
+  EXPECT_NEAR(graphPathLength(s, 10, 90), 30.0, 0.5);
+  s.loops.back().active = false;  // removed by the graph's chi^2 test: no shortcut
+  EXPECT_DOUBLE_EQ(graphPathLength(s, 10, 90), driven);
+  s.keyframes[50].session_start = true;  // no odometry edge 49 -> 50
+  EXPECT_TRUE(std::isinf(graphPathLength(s, 10, 90)));
+  s.loops.back().active = true;
+  EXPECT_NEAR(graphPathLength(s, 10, 90), 30.0, 0.5);
+}
+
 TEST(ChainCovariance, ASessionStartMakesTheRelativePoseUnknown) {
   const OdometryEdgeParams p;
   SlamState s;

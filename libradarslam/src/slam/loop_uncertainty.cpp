@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <queue>
+#include <vector>
 
 #include "graph_optimiser.h"
 #include "radarslam/core/se2_covariance.h"
@@ -110,6 +112,43 @@ double correctionMahalanobis2(const TPose2D& loop_relative, const TPose2D& estim
   const Eigen::Matrix3d cov =
       chain_covariance + rotateCovariance(loop_information.inverse(), loop_relative.phi);
   return d.dot(cov.inverse() * d);
+}
+
+double graphPathLength(const SlamState& state, std::uint64_t from, std::uint64_t to) {
+  const std::size_t n = state.keyframes.size();
+  if (from >= n || to >= n) return std::numeric_limits<double>::infinity();
+  // Loop edges by keyframe (built per call: called only for loops refused as ambiguous).
+  std::vector<std::vector<std::uint64_t>> loops(n);
+  for (const AcceptedLoop& l : state.loops)
+    if (l.active && l.from < n && l.to < n) {
+      loops[l.from].push_back(l.to);
+      loops[l.to].push_back(l.from);
+    }
+  auto edgeLength = [&](std::size_t k) {  // odometry edge k - 1 -> k
+    const TPose2D& e = state.keyframes[k].odom_edge;
+    return std::hypot(e.x, e.y);
+  };
+  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+  using Item = std::pair<double, std::uint64_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
+  dist[from] = 0;
+  open.emplace(0.0, from);
+  while (!open.empty()) {
+    const auto [d, k] = open.top();
+    open.pop();
+    if (k == to) return d;
+    if (d > dist[k]) continue;
+    auto relax = [&](std::uint64_t j, double length) {
+      if (d + length < dist[j]) {
+        dist[j] = d + length;
+        open.emplace(dist[j], j);
+      }
+    };
+    if (k > 0 && !state.keyframes[k].session_start) relax(k - 1, edgeLength(k));
+    if (k + 1 < n && !state.keyframes[k + 1].session_start) relax(k + 1, edgeLength(k + 1));
+    for (const std::uint64_t j : loops[k]) relax(j, 0.0);
+  }
+  return std::numeric_limits<double>::infinity();
 }
 
 }  // namespace radarslam::slam_detail

@@ -31,6 +31,13 @@ Eigen::Matrix3d slideLoopInformation(const Eigen::Matrix3d& information, const E
 bool uniqueWithinGate(const LoopVerification& verification,
                       const std::function<bool(const TPose2D& relative)>& within_gate);
 
+/// The length (metres of odometry) of the shortest path between keyframes `from` and `to` through
+/// the graph: odometry edges cost their length, active accepted loops nothing (a loop ties the
+/// two places together far more tightly than metres of odometry). Infinite when no path joins
+/// them (another session not yet anchored). The drift a pose can have accumulated relative to
+/// another is that of this path, not of the distance driven between them once loops exist.
+double graphPathLength(const SlamState& state, std::uint64_t from, std::uint64_t to);
+
 /// The covariance of keyframe `query`'s pose in an earlier keyframe m's frame when only the
 /// odometry edges between them are known: first-order propagation of the edges' covariances
 /// (odometryInformation, isotropic in x, y) through the chain of compositions. A heading error at
