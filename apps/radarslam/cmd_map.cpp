@@ -60,7 +60,7 @@ double peakRssMiB() {
 std::string loopsCsv(const std::vector<LoopRecord>& loops) {
   std::ostringstream s;
   s << "# query_keyframe,match_keyframe,descriptor_distance,accepted,rejected_by_graph,x,y,phi,inlier_ratio,"
-       "ambiguity_ratio,sigma_x,sigma_y,sigma_phi,partial,reason\n";
+       "ambiguity_ratio,sigma_x,sigma_y,sigma_phi,partial,confirmed,reason\n";
   for (const auto& l : loops) {
     // Marginal sigmas of the verifier's information (inf where it constrains nothing).
     Eigen::Vector3d sigma = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
@@ -69,7 +69,7 @@ std::string loopsCsv(const std::vector<LoopRecord>& loops) {
     s << l.query << ',' << l.match << ',' << l.descriptor_distance << ',' << l.accepted << ','
       << l.rejected_by_graph << ',' << l.relative.x << ',' << l.relative.y << ',' << l.relative.phi << ','
       << l.inlier_ratio << ',' << l.ambiguity_ratio << ',' << sigma.x() << ',' << sigma.y() << ','
-      << sigma.z() << ',' << l.slide << ',' << l.reason << '\n';
+      << sigma.z() << ',' << l.slide << ',' << l.confirmed << ',' << l.reason << '\n';
   }
   return s.str();
 }
@@ -252,10 +252,12 @@ int runMap(int argc, char** argv) {
           buf, sizeof buf,
           "  loop truth     recall %.2f (%zu of %zu keyframes with a true loop), %zu false accepted "
           "(%zu left in the graph), max error of true loops %.2f m / %.2f deg, information NEES mean %.1f "
-          "(%.0f %% within chi2(3) 95 %%); %zu partial loops (along one line), %zu of them false\n",
+          "(%.0f %% within chi2(3) 95 %%); %zu partial loops (along one line), %zu of them false; %zu "
+          "ambiguous "
+          "places confirmed by the next keyframes, %zu of them false\n",
           le.recall, le.keyframes_with_loop_found, le.keyframes_with_true_loop, le.false_accepted,
           le.false_in_graph, le.max_error_m, le.max_error_deg, le.nees_mean, 100 * le.nees_within_95,
-          le.slide_accepted, le.slide_false);
+          le.slide_accepted, le.slide_false, le.confirmed_accepted, le.confirmed_false);
       eval_text += buf;
       std::size_t refused_right = 0;
       for (const auto& [reason, count] : le.refused_right) refused_right += count;
@@ -324,11 +326,15 @@ int runMap(int argc, char** argv) {
         map.keyframes.size(), map.points.size(), map.edges.size(), map_dir.string().c_str(), save_ms,
         culled.keyframes_before - culled.keyframes_after, culled.keyframes_before);
     sum << buf;
-    std::snprintf(buf, sizeof buf,
-                  "  loops          %zu candidates verified: %zu accepted, %zu rejected by verification, %zu "
-                  "removed by the pose graph; %zu graph optimisations\n",
-                  stats.loop_candidates, stats.loops_accepted, stats.loops_rejected,
-                  stats.loops_rejected_by_graph, stats.graph_optimisations);
+    std::snprintf(
+        buf, sizeof buf,
+        "  loops          %zu candidates verified: %zu accepted (%zu of them ambiguous places confirmed "
+        "by the next keyframes; %zu confirmations held back by a rival placement, %zu withdrawn), %zu "
+        "rejected by "
+        "verification, %zu removed by the pose graph; %zu graph optimisations\n",
+        stats.loop_candidates, stats.loops_accepted, stats.loops_confirmed, stats.confirmations_held_back,
+        stats.confirmations_withdrawn, stats.loops_rejected, stats.loops_rejected_by_graph,
+        stats.graph_optimisations);
     sum << buf;
     const double n = static_cast<double>(done);
     std::snprintf(

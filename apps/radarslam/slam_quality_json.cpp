@@ -51,6 +51,8 @@ std::string slamQualityJson(const eval::EvalReport& slam, const eval::EvalReport
        ", \"nees_within_95\": " + number(loops.nees_within_95) +
        ", \"slide_accepted\": " + std::to_string(loops.slide_accepted) +
        ", \"slide_false\": " + std::to_string(loops.slide_false) +
+       ", \"confirmed_accepted\": " + std::to_string(loops.confirmed_accepted) +
+       ", \"confirmed_false\": " + std::to_string(loops.confirmed_false) +
        ", \"keyframes_with_true_loop\": " + std::to_string(loops.keyframes_with_true_loop) +
        ", \"refused_wrong\": " + std::to_string(loops.refused_wrong) + ", \"refused_right\": {";
   for (auto it = loops.refused_right.begin(); it != loops.refused_right.end(); ++it)

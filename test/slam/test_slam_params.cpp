@@ -58,6 +58,8 @@ TEST(SlamParams, BadValuesAndTyposAreErrorsNamingTheFile) {
   expectError("slam:\n  local_mapping:\n    interval_keyframes: 9\n", "interval_keyframes");
   expectError("slam:\n  loop_closure:\n    max_verifications: 0\n", "max_verifications");
   expectError("slam:\n  odometry_edges:\n    lost_factor: 0.5\n", "lost_factor");
+  expectError("slam:\n  loop_closure:\n    confirm_ambiguous_keyframes: 1\n", "confirm_ambiguous_keyframes");
+  expectError("slam:\n  loop_closure:\n    confirm_max_gap_keyframes: 0\n", "confirm_max_gap_keyframes");
   expectError("slam:\n  local_mapping:\n    windw_keyframes: 4\n", "windw_keyframes");
 }
 

@@ -13,6 +13,15 @@
 
 namespace radarslam::slam_detail {
 
+LoopCloser::LoopCloser(SlamState& state, const SlamParams& params)
+    : state_(state), params_(params), detector_(params.loop_closing.detector) {
+  const LoopClosingParams& lc = params.loop_closing;
+  if (lc.confirm_ambiguous_keyframes > 0)
+    confirmation_ = std::make_unique<LoopConfirmation>(
+        lc.confirm_ambiguous_keyframes, static_cast<std::uint64_t>(lc.confirm_max_gap_keyframes),
+        params.pose_graph.loop_chi2_gate);
+}
+
 void LoopCloser::addMapKeyframe(std::uint64_t id) {
   if (!map_detector_) {
     LoopDetectorParams p = params_.loop_closing.detector;
@@ -38,6 +47,46 @@ void LoopCloser::anchorSession(const TPose2D& implied, std::uint64_t query) {
   ++state_.corrections;
   logger().logFmt(mrpt::system::LVL_INFO, "slam: new session anchored to the map at keyframe %llu",
                   static_cast<unsigned long long>(query));
+}
+
+bool LoopCloser::withdrawContradicted(const std::vector<std::size_t>& records) {
+  for (const std::size_t r : records) {
+    for (AcceptedLoop& l : state_.loops)
+      if (l.record == r) l.active = false;
+    LoopRecord& rec = state_.records[r];
+    rec.accepted = rec.confirmed = false;
+    rec.reason = "withdrawn: a unique loop of a nearby keyframe places it elsewhere";
+    --state_.stats.loops_accepted;
+    --state_.stats.loops_confirmed;
+    ++state_.stats.loops_rejected;
+    ++state_.stats.confirmations_withdrawn;
+    logger().logFmt(mrpt::system::LVL_DEBUG, "slam: confirmed loop %llu -> %llu withdrawn",
+                    static_cast<unsigned long long>(rec.match), static_cast<unsigned long long>(rec.query));
+  }
+  return !records.empty();
+}
+
+bool LoopCloser::confirmPending(const PendingLoop& loop, bool& optimise) {
+  const auto& lc = params_.loop_closing;
+  const auto confirmed = confirmation_->add(loop, [&](std::uint64_t k) { return state_.keyframes[k].pose; });
+  for (const PendingLoop& c : confirmed) {
+    LoopRecord& rec = state_.records[c.record];
+    rec.accepted = rec.confirmed = true;
+    rec.reason.clear();
+    --state_.stats.loops_rejected;
+    ++state_.stats.loops_accepted;
+    ++state_.stats.loops_confirmed;
+    const TPose2D implied = compose(state_.keyframes[c.match].pose, c.relative);
+    const TPose2D& q = state_.keyframes[c.query].pose;
+    optimise |=
+        std::hypot(implied.x - q.x, implied.y - q.y) > lc.optimise_min_correction_m ||
+        std::abs(std::remainder(implied.phi - q.phi, 2 * M_PI)) > lc.optimise_min_correction_deg * M_PI / 180;
+    state_.loops.push_back(AcceptedLoop{c.match, c.query, c.relative, c.information, c.record, true});
+    logger().logFmt(mrpt::system::LVL_DEBUG, "slam: ambiguous loop %llu -> %llu confirmed",
+                    static_cast<unsigned long long>(c.match), static_cast<unsigned long long>(c.query));
+  }
+  state_.stats.confirmations_held_back = confirmation_->rivalled();
+  return !confirmed.empty();
 }
 
 void LoopCloser::process(std::uint64_t id) {
@@ -182,9 +231,30 @@ void LoopCloser::process(std::uint64_t id) {
       state_.records.push_back(rec);
       if (!state_.records.back().accepted) {
         ++state_.stats.loops_rejected;
+        // Refused only as an ambiguous place: a loop once the next keyframes agree with it. A place
+        // that looks alike elsewhere needs the prior more than a unique one: its correction must be
+        // within the drift bound of the shortest path through the graph (accepted loops as
+        // shortcuts), not of the distance driven between the two keyframes.
+        auto withinPathBound = [&] {
+          if (!gate) return true;
+          const double path = graphPathLength(state_, match, id);
+          return g.dm <= lc.drift_base_m + lc.drift_fraction * path &&
+                 g.da <= (lc.drift_base_deg + lc.drift_deg_per_m * path) * M_PI / 180;
+        };
+        // A placement beyond the bounds still counts as a rival if the next keyframes agree on it.
+        if (confirmation_ && anchored && v.ambiguous_only && !rec.slide)
+          closed |= confirmPending({id, match, v.relative_pose, loop_information, state_.records.size() - 1,
+                                    g.pass && withinPathBound()},
+                                   optimise);
         continue;
       }
       ++state_.stats.loops_accepted;
+      // A unique place: ambiguous loops of nearby keyframes that agree with it enter with it, and
+      // ones confirmed earlier that contradict it are withdrawn.
+      if (confirmation_ && state_.anchored && !rec.slide)
+        optimise |= withdrawContradicted(confirmation_->addUnique(
+            {id, match, v.relative_pose, loop_information, state_.records.size() - 1},
+            [&](std::uint64_t k) { return state_.keyframes[k].pose; }));
       if (!state_.anchored) anchorSession(implied, id);
       AcceptedLoop loop{rec.match, id, v.relative_pose, loop_information, state_.records.size() - 1, true};
       optimise |= dm > lc.optimise_min_correction_m || da > lc.optimise_min_correction_deg * M_PI / 180;

@@ -59,6 +59,10 @@ LoopEvaluation evaluateLoops(const KeyframeMap& map, const std::vector<LoopRecor
       ++ev.false_accepted;
       ev.false_in_graph += !l.rejected_by_graph;
     }
+    if (l.confirmed) {
+      ++ev.confirmed_accepted;
+      ev.confirmed_false += wrong;
+    }
     if (l.slide) {
       ++ev.slide_accepted;
       ev.slide_false += wrong;

@@ -46,6 +46,10 @@ void loadParams(const YamlParams& yaml, SlamParams& p) {
   lc.get("loop_information_estimated", p.loop_closing.loop_information_estimated);
   lc.get("accept_slide_loops", p.loop_closing.accept_slide_loops);
   lc.get("ambiguity_within_drift_bound", p.loop_closing.ambiguity_within_drift_bound);
+  lc.get("confirm_ambiguous_keyframes", p.loop_closing.confirm_ambiguous_keyframes, Range::closed(0, 100));
+  if (p.loop_closing.confirm_ambiguous_keyframes == 1)
+    lc.fail("confirm_ambiguous_keyframes", "must be 0 (off) or >= 2");
+  lc.get("confirm_max_gap_keyframes", p.loop_closing.confirm_max_gap_keyframes, Range::closed(1, 100));
   lc.get("drift_gate_chi2", p.loop_closing.drift_gate_chi2, Range::closed(0, 10000));
   lc.get("drift_base_m", p.loop_closing.drift_base_m, Range::closed(0, 10000.0));
   lc.get("drift_base_deg", p.loop_closing.drift_base_deg, Range::closed(0, 360));

@@ -43,6 +43,8 @@ struct LoopEvaluation {
   /// line and the heading); a false one also counts in false_accepted / false_in_graph. They count
   /// in neither the recall nor the error and NEES figures above.
   std::size_t slide_accepted = 0, slide_false = 0;
+  /// Ambiguous places confirmed by the next keyframes (LoopRecord::confirmed), and how many false.
+  std::size_t confirmed_accepted = 0, confirmed_false = 0;
   /// Refused candidates judged like accepted loops: `refused_right` had a relative pose within
   /// max_error_m / max_error_deg of the truth (a loop the system could have used), by the reason it
   /// was refused (LoopRecord::reason up to its first " (", e.g. "ambiguous place"); `refused_wrong`

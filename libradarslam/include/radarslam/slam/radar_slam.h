@@ -36,12 +36,19 @@ struct LoopRecord {
   /// slide_direction (a unit vector in the query's frame) and in heading, not along it.
   bool slide = false;
   Eigen::Vector2d slide_direction = Eigen::Vector2d::Zero();
+  /// Refused as an ambiguous place, then accepted when the next keyframes' loops agreed with it
+  /// (LoopClosingParams::confirm_ambiguous_keyframes).
+  bool confirmed = false;
 };
 
 struct SlamStats {
   std::size_t scans = 0, lost_scans = 0, keyframes = 0, map_points = 0;
   std::size_t loop_candidates = 0, loops_accepted = 0, loops_rejected = 0, loops_rejected_by_graph = 0;
   std::size_t graph_optimisations = 0, bundle_adjustments = 0;
+  /// Loops refused as ambiguous places, then confirmed by the next keyframes; and how often a chain
+  /// of them was held back by a rival placement (LoopClosingParams::confirm_ambiguous_keyframes).
+  std::size_t loops_confirmed = 0, confirmations_held_back = 0;
+  std::size_t confirmations_withdrawn = 0;  ///< confirmed, then contradicted by a unique loop
   double tracking_ms = 0, local_mapping_ms = 0, loop_closing_ms = 0, graph_ms = 0;  ///< summed CPU wall time
 };
 

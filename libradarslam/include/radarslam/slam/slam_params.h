@@ -99,6 +99,16 @@ struct LoopClosingParams {
   /// unique where the loop can be, and the loop is accepted (then gated like any other). Needs the
   /// drift gate (drift_fraction > 0) and an anchored session.
   bool ambiguity_within_drift_bound = false;
+  /// A place the verifier refused as ambiguous only (every other test passed) becomes a loop once
+  /// the best alignments of this many queries, each within confirm_max_gap_keyframes keyframes of
+  /// the previous, agree pairwise (chi^2(3) under both loops' covariances, the bound
+  /// pose_graph.loop_chi2_gate), no rival placement is agreed on by two of them or by a unique loop,
+  /// and its correction is within the drift bound of the shortest path through the graph; a unique
+  /// loop that contradicts it later withdraws it (slam/loop_confirmation.h, docs/slam.md). 3: chosen on
+  /// the train split (0 false loops left). 0 = off; valid 0 or [2, 100]
+  int confirm_ambiguous_keyframes = 3;
+  /// The largest gap between consecutive queries of such a chain (keyframes, ~2 m each); valid [1, 100]
+  int confirm_max_gap_keyframes = 3;
 };
 
 struct SlamParams {
