@@ -426,6 +426,14 @@ TEST(RelocParams, LoadFromYamlAndRejectUnknownKeys) {
   EXPECT_DOUBLE_EQ(p.tracker.min_fit_score, 0.5);
   EXPECT_DOUBLE_EQ(p.tracker.icp.cauchy_m, 0.7);
   EXPECT_DOUBLE_EQ(p.tracker.submap.radius_m, 80);
+  // Contested places are followed after a loss only when switched on (off by default).
+  EXPECT_FALSE(p.resolve_contested_fixes_after_loss);
+  EXPECT_FALSE(p.resolve_contested_fixes);
+  const YamlParams after_loss =
+      YamlParams::fromText("localization:\n  resolve_contested_fixes_after_loss: true\n");
+  loadParams(after_loss.section("localization"), p);
+  EXPECT_NO_THROW(after_loss.rejectUnknownKeys());
+  EXPECT_TRUE(p.resolve_contested_fixes_after_loss);
   const YamlParams typo = YamlParams::fromText("localization:\n  tracker:\n    min_fit_scor: 0.5\n");
   LocalizerParams q;
   loadParams(typo.section("localization"), q);

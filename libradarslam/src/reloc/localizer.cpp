@@ -32,6 +32,7 @@ void loadParams(const YamlParams& yaml, LocalizerParams& p) {
   yaml.get("gate_fixes_with_odometry", p.gate_fixes_with_odometry);
   yaml.get("degraded_fixes", p.degraded_fixes);
   yaml.get("resolve_contested_fixes", p.resolve_contested_fixes);
+  yaml.get("resolve_contested_fixes_after_loss", p.resolve_contested_fixes_after_loss);
   loadParams(yaml.section("peak_cloud"), p.peaks);
   loadParams(yaml.section("global"), p.global);
   loadParams(yaml.section("tracker"), p.tracker);
@@ -320,7 +321,8 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
   if (fix.found) {
     // Refine and check the fix against the local submap (same tests as tracking).
     candidate = m.tracker.track(cloud, fix.pose, static_cast<long>(fix.keyframe));
-  } else if (m.params.resolve_contested_fixes && !fix.contested.empty()) {
+  } else if ((m.params.resolve_contested_fixes || (m.params.resolve_contested_fixes_after_loss && m.prior)) &&
+             !fix.contested.empty()) {
     // Places refused only as ambiguous become hypotheses, told apart over the next scans; while
     // they live, each search that points at one again supports it.
     if (m.hypotheses.empty())

@@ -80,12 +80,20 @@ struct LocalizerParams {
   /// start of the train avenue the fix is a look-alike 248 m away (the right keyframe never
   /// retrieved) (docs/localization.md, "Contested first fixes").
   bool resolve_contested_fixes = false;
+  /// The same only while a dead-reckoned prior exists (after a loss, gate_fixes_with_odometry): an
+  /// ambiguous place needs a prior, as SLAM's loop confirmation needs its drift bound, and the
+  /// hypotheses are seeded and kept only where the prior allows them. The first fix of a run has no
+  /// prior and is not affected. Off: on the test grid-s3-clear it gave a fix 144 m off (reported
+  /// `degraded`, sigma 2 m), let through by the prior gate's map-chain covariance, which runs along
+  /// the keyframe indices and ignores the revisits that tie the two places (docs/localization.md,
+  /// "Contested fixes after a loss"). Ignored when resolve_contested_fixes is on.
+  bool resolve_contested_fixes_after_loss = false;
 };
 
 /// Overrides from the `localization:` section of `yaml`: motion_compensation, max_missed_scans,
 /// global_retry_interval, map_sweep_period_s, confirm_fixes, confirm_distance_m, confirm_angle_deg,
-/// odometry_adaptive_radius, gate_fixes_with_odometry, degraded_fixes, resolve_contested_fixes
-/// and the sections peak_cloud:, global:, tracker:, integrity:.
+/// odometry_adaptive_radius, gate_fixes_with_odometry, degraded_fixes, resolve_contested_fixes,
+/// resolve_contested_fixes_after_loss and the sections peak_cloud:, global:, tracker:, integrity:.
 void loadParams(const YamlParams& yaml, LocalizerParams& params);
 
 /// GlobalFix / Tracking: a registration that passed every check. Degraded: a pose with an inflated
