@@ -35,6 +35,28 @@ TEST(Integrity, ComposeCovarianceRotatesAndAddsLeverArm) {
   EXPECT_NEAR(c(1, 1), 0, 1e-9);
 }
 
+TEST(Integrity, PathCovarianceGrowsWithThePathNotWithTheKeyframeOrder) {
+  // Keyframes every 10 m along x, and keyframe 5 back beside keyframe 0 (a revisit): along the path
+  // 0 -> 5 the relative pose is as certain as one short step; along the keyframe order, 50 m of drive.
+  KeyframeMap map;
+  auto add = [&](mrpt::math::TPose2D pose) {
+    Keyframe kf;
+    kf.pose = pose;
+    map.keyframes.push_back(kf);
+  };
+  for (int k = 0; k < 5; ++k) add({10.0 * k, 0, 0});
+  add({0.5, 2.0, M_PI});
+  const IntegrityParams p;
+  const Eigen::Matrix3d direct = pathCovariance(map, {0, 5}, p);
+  const Eigen::Matrix3d around = pathCovariance(map, {0, 1, 2, 3, 4, 5}, p);
+  EXPECT_TRUE(pathCovariance(map, {3}, p).isZero());
+  EXPECT_NEAR(direct(2, 2), odometryCovariance({0.5, 2.0, M_PI}, p)(2, 2), 1e-12);
+  EXPECT_GT(position3Sigma(around), 10 * position3Sigma(direct));
+  // Each step's own covariance, compounded: one step equals the noise model of that motion.
+  const Eigen::Matrix3d one = pathCovariance(map, {1, 2}, p);
+  EXPECT_TRUE(one.isApprox(odometryCovariance({10, 0, 0}, p), 1e-12));
+}
+
 TEST(Integrity, FusionFillsTheWeakDirection) {
   // Registration: good across a corridor along x, useless along it; prediction 1 m further along x.
   Eigen::Matrix3d reg = Eigen::Vector3d(1e6, 0.01, 1e-4).asDiagonal();

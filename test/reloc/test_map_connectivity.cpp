@@ -38,11 +38,26 @@ TEST(MapConnectivity, PathDistanceFollowsOdometryAndLoopEdges) {
   EXPECT_EQ(MapConnectivity(map).within(0, 15), (std::vector<char>{1, 1, 0, 1, 1}));
 }
 
+TEST(MapConnectivity, ShortestPathTakesTheMergedRevisit) {
+  KeyframeMap map = chain(6);
+  for (std::uint64_t k = 10; k < 15; ++k) map.edges.push_back(edge(k, k + 1, 10));
+  const MapConnectivity along(map);
+  EXPECT_EQ(along.path(1, 4), (std::vector<std::size_t>{1, 2, 3, 4}));
+  EXPECT_EQ(along.path(4, 1), (std::vector<std::size_t>{4, 3, 2, 1}));
+  EXPECT_EQ(along.path(2, 2), (std::vector<std::size_t>{2}));
+  // The drive came back to keyframe 0 at keyframe 5 (a loop edge, 1 m): 0 -> 5 -> 4 (11 m), not
+  // 0 -> 1 -> ... -> 4 (40 m).
+  map.edges.push_back(edge(15, 10, 1, EdgeKind::Loop));
+  EXPECT_EQ(MapConnectivity(map).path(0, 4), (std::vector<std::size_t>{0, 5, 4}));
+  EXPECT_TRUE(MapConnectivity(map).path(0, 6).empty());  // out of range
+}
+
 TEST(MapConnectivity, UnconnectedCopyIsNeverWithinReach) {
   KeyframeMap map = chain(6);  // 0-2 one copy, 3-5 another, no edge between them
   map.edges = {edge(10, 11, 10), edge(11, 12, 10), edge(13, 14, 10), edge(14, 15, 10)};
   map.edges.push_back(edge(10, 99, 1));  // an edge to an unknown id is ignored
   EXPECT_EQ(MapConnectivity(map).within(1, 1e9), (std::vector<char>{1, 1, 1, 0, 0, 0}));
+  EXPECT_TRUE(MapConnectivity(map).path(0, 4).empty());
 }
 
 TEST(MapConnectivity, MapWithoutEdgesIsOneChainAndBadStartMeansEverything) {

@@ -55,6 +55,18 @@ Eigen::Matrix3d odometryCovariance(const mrpt::math::TPose2D& m, const Integrity
   return Eigen::Vector3d(st * st, st * st, sr * sr).asDiagonal();
 }
 
+Eigen::Matrix3d pathCovariance(const KeyframeMap& map, const std::vector<std::size_t>& path,
+                               const IntegrityParams& params) {
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    const mrpt::math::TPose2D& at = map.keyframes[path[i - 1]].pose;
+    const mrpt::math::TPose2D rel =
+        (mrpt::poses::CPose2D(map.keyframes[path[i]].pose) - mrpt::poses::CPose2D(at)).asTPose();
+    cov = composeCovariance(at, cov, rel, odometryCovariance(rel, params));
+  }
+  return cov;
+}
+
 Eigen::Vector3d poseDifference(const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b) {
   return {b.x - a.x, b.y - a.y, std::remainder(b.phi - a.phi, 2 * M_PI)};
 }

@@ -4,10 +4,12 @@
 
 #include <mrpt/poses/CPose2D.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <future>
 #include <optional>
+#include <vector>
 
 #include "radarslam/core/errors.h"
 #include "radarslam/core/log.h"
@@ -16,6 +18,7 @@
 #include "radarslam/map/keyframe_search.h"
 #include "radarslam/radar/motion_compensation.h"
 #include "radarslam/reloc/fix_hypotheses.h"
+#include "radarslam/reloc/map_connectivity.h"
 #include "radarslam/reloc/map_motion.h"
 
 namespace radarslam {
@@ -62,20 +65,18 @@ mrpt::math::TPose2D compose(const mrpt::math::TPose2D& a, const mrpt::math::TPos
   return (mrpt::poses::CPose2D(a) + mrpt::poses::CPose2D(b)).asTPose();
 }
 /// Covariance of keyframe b's pose relative to keyframe a's, in the map frame, with the odometry
-/// noise model compounded along the keyframes between them (map order: the order they were
-/// driven; loop closures make the true uncertainty smaller, so this is conservative).
-Eigen::Matrix3d mapChainCovariance(const KeyframeMap& map, long a, long b, const IntegrityParams& ip) {
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  if (a < 0 || b < 0 || a == b) return cov;
-  if (a > b) std::swap(a, b);
-  mrpt::math::TPose2D at = map.keyframes[static_cast<std::size_t>(a)].pose;
-  for (long k = a + 1; k <= b; ++k) {
-    const auto& next = map.keyframes[static_cast<std::size_t>(k)].pose;
-    const mrpt::math::TPose2D rel = (mrpt::poses::CPose2D(next) - mrpt::poses::CPose2D(at)).asTPose();
-    cov = composeCovariance(at, cov, rel, odometryCovariance(rel, ip));
-    at = next;
-  }
-  return cov;
+/// noise model compounded along the shortest path between them through the map's graph: its
+/// odometry links and the revisits the map merged (reloc/map_connectivity.h; as SLAM's
+/// graphPathLength). Two places a revisit tied together are as certain relative to each other as
+/// the short path says, not as the whole drive between them (the keyframe order, used only when no
+/// path joins them).
+Eigen::Matrix3d mapChainCovariance(const KeyframeMap& map, const MapConnectivity& graph, long a, long b,
+                                   const IntegrityParams& ip) {
+  if (a < 0 || b < 0 || a == b) return Eigen::Matrix3d::Zero();
+  std::vector<std::size_t> path = graph.path(static_cast<std::size_t>(a), static_cast<std::size_t>(b));
+  if (path.empty())
+    for (long k = std::min(a, b); k <= std::max(a, b); ++k) path.push_back(static_cast<std::size_t>(k));
+  return pathCovariance(map, path, ip);
 }
 /// The tracker's checks (g), (h) bound their rivals as the integrity checks bound an innovation.
 MapTrackerParams withRivalBound(MapTrackerParams t, double chi2_threshold) {
@@ -95,6 +96,7 @@ struct Localizer::Impl {
   double chi2_threshold;  ///< chi^2(3) quantile of integrity.chi2_probability
   RadarOdometry odometry;
   GlobalLocalizer global;
+  MapConnectivity graph;  ///< the map's keyframe graph: the prior gate's path covariance
   MapTracker tracker;
   bool have_pose = false;  ///< pose is trusted or dead-reckoned from a trusted one
   mrpt::math::TPose2D pose;
@@ -132,6 +134,7 @@ struct Localizer::Impl {
           return o;
         }()),
         global(map, p.global),
+        graph(map),
         tracker(map, withRivalBound(p.tracker, chi2_threshold)),
         fits(p.integrity),
         window(p.integrity),
@@ -303,7 +306,7 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
     return !m.prior ||
            mahalanobis2(poseDifference(m.prior->pose, tr.icp.pose),
                         m.prior->cov +
-                            mapChainCovariance(m.map, m.prior->anchor,
+                            mapChainCovariance(m.map, m.graph, m.prior->anchor,
                                                nearestKeyframe(m.map, tr.icp.pose.x, tr.icp.pose.y), ip) +
                             tr.icp.covariance) <= m.chi2_threshold;
   };

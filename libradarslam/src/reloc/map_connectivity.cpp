@@ -1,6 +1,7 @@
 // Keyframe graph of a stored map and bounded path distances; see reloc/map_connectivity.h.
 #include "radarslam/reloc/map_connectivity.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -56,6 +57,36 @@ std::vector<char> MapConnectivity::within(std::size_t from, double max_path_m) c
       }
     }
   }
+  return out;
+}
+
+std::vector<std::size_t> MapConnectivity::path(std::size_t from, std::size_t to) const {
+  const std::size_t n = adjacency_.size();
+  if (from >= n || to >= n) return {};
+  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+  std::vector<std::size_t> previous(n, n);
+  using Item = std::pair<double, std::size_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  dist[from] = 0;
+  queue.push({0, from});
+  while (!queue.empty()) {
+    const auto [d, k] = queue.top();
+    queue.pop();
+    if (k == to) break;
+    if (d > dist[k]) continue;
+    for (const Link& l : adjacency_[k]) {
+      const double nd = d + l.length_m;
+      if (nd < dist[l.to]) {
+        dist[l.to] = nd;
+        previous[l.to] = k;
+        queue.push({nd, l.to});
+      }
+    }
+  }
+  if (!std::isfinite(dist[to])) return {};
+  std::vector<std::size_t> out{to};
+  while (out.back() != from) out.push_back(previous[out.back()]);
+  std::reverse(out.begin(), out.end());
   return out;
 }
 

@@ -27,6 +27,7 @@
 #include <Eigen/Core>
 
 #include <deque>
+#include <vector>
 
 #include "radarslam/core/se2_covariance.h"
 #include "radarslam/map/keyframe_map.h"
@@ -65,6 +66,12 @@ double chi2Quantile3(double p);
 
 /// Covariance of the odometry motion `motion` (T_prev_cur) under the noise model, in its frame.
 Eigen::Matrix3d odometryCovariance(const mrpt::math::TPose2D& motion, const IntegrityParams& params);
+
+/// Covariance of the last keyframe's pose relative to the first along `path` (indices into
+/// map.keyframes), in the map frame: the odometry noise model compounded over each step between
+/// consecutive keyframes of the path. Zero for a path of fewer than two keyframes.
+Eigen::Matrix3d pathCovariance(const KeyframeMap& map, const std::vector<std::size_t>& path,
+                               const IntegrityParams& params);
 
 /// (x, y, phi) of b - a in the map frame, phi wrapped to (-pi, pi].
 Eigen::Vector3d poseDifference(const mrpt::math::TPose2D& a, const mrpt::math::TPose2D& b);

@@ -84,8 +84,9 @@ struct LocalizerParams {
   /// ambiguous place needs a prior, as SLAM's loop confirmation needs its drift bound, and the
   /// hypotheses are seeded and kept only where the prior allows them. The first fix of a run has no
   /// prior and is not affected. Off: on the test grid-s3-clear it gave a fix 144 m off (reported
-  /// `degraded`, sigma 2 m), let through by the prior gate's map-chain covariance, which runs along
-  /// the keyframe indices and ignores the revisits that tie the two places (docs/localization.md,
+  /// `degraded`, sigma 2 m), let through by the prior gate's map covariance, then compounded along
+  /// the keyframe indices (now along the map graph's shortest path, which rules it out); on the
+  /// held-out wall-s29 it gains 0.2 points: not enough evidence yet (docs/localization.md,
   /// "Contested fixes after a loss"). Ignored when resolve_contested_fixes is on.
   bool resolve_contested_fixes_after_loss = false;
 };

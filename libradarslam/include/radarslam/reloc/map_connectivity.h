@@ -24,6 +24,10 @@ class MapConnectivity {
   /// 0 otherwise; all 1 when `from` is out of range.
   std::vector<char> within(std::size_t from, double max_path_m) const;
 
+  /// The keyframe indices along the shortest path from `from` to `to` (Dijkstra, stopped at `to`),
+  /// both included; empty when either is out of range or no path joins them.
+  std::vector<std::size_t> path(std::size_t from, std::size_t to) const;
+
   std::size_t size() const { return adjacency_.size(); }
 
  private:
