@@ -36,56 +36,48 @@ MapConnectivity::MapConnectivity(const KeyframeMap& map) : adjacency_(map.keyfra
     }
 }
 
-std::vector<char> MapConnectivity::within(std::size_t from, double max_path_m) const {
-  if (from >= adjacency_.size()) return std::vector<char>(adjacency_.size(), 1);
-  std::vector<double> dist(adjacency_.size(), std::numeric_limits<double>::infinity());
-  std::vector<char> out(adjacency_.size(), 0);
+MapConnectivity::Search MapConnectivity::search(std::size_t from, double max_path_m,
+                                                std::size_t stop_at) const {
+  const std::size_t n = adjacency_.size();
+  Search r{std::vector<double>(n, std::numeric_limits<double>::infinity()), std::vector<std::size_t>(n, n)};
+  std::vector<char> settled(n, 0);
   using Item = std::pair<double, std::size_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-  dist[from] = 0;
+  r.distance[from] = 0;
   queue.push({0, from});
   while (!queue.empty()) {
     const auto [d, k] = queue.top();
     queue.pop();
-    if (d > dist[k] || out[k]) continue;
-    out[k] = 1;
+    if (d > r.distance[k] || settled[k]) continue;
+    settled[k] = 1;
+    if (k == stop_at) break;
     for (const Link& l : adjacency_[k]) {
       const double nd = d + l.length_m;
-      if (nd <= max_path_m && nd < dist[l.to]) {
-        dist[l.to] = nd;
+      if (nd <= max_path_m && nd < r.distance[l.to]) {
+        r.distance[l.to] = nd;
+        r.previous[l.to] = k;
         queue.push({nd, l.to});
       }
     }
   }
+  return r;
+}
+
+std::vector<char> MapConnectivity::within(std::size_t from, double max_path_m) const {
+  if (from >= adjacency_.size()) return std::vector<char>(adjacency_.size(), 1);
+  const Search r = search(from, max_path_m, adjacency_.size());
+  std::vector<char> out(adjacency_.size(), 0);
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = std::isfinite(r.distance[k]) ? 1 : 0;
   return out;
 }
 
 std::vector<std::size_t> MapConnectivity::path(std::size_t from, std::size_t to) const {
   const std::size_t n = adjacency_.size();
   if (from >= n || to >= n) return {};
-  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
-  std::vector<std::size_t> previous(n, n);
-  using Item = std::pair<double, std::size_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-  dist[from] = 0;
-  queue.push({0, from});
-  while (!queue.empty()) {
-    const auto [d, k] = queue.top();
-    queue.pop();
-    if (k == to) break;
-    if (d > dist[k]) continue;
-    for (const Link& l : adjacency_[k]) {
-      const double nd = d + l.length_m;
-      if (nd < dist[l.to]) {
-        dist[l.to] = nd;
-        previous[l.to] = k;
-        queue.push({nd, l.to});
-      }
-    }
-  }
-  if (!std::isfinite(dist[to])) return {};
+  const Search r = search(from, std::numeric_limits<double>::infinity(), to);
+  if (!std::isfinite(r.distance[to])) return {};
   std::vector<std::size_t> out{to};
-  while (out.back() != from) out.push_back(previous[out.back()]);
+  while (out.back() != from) out.push_back(r.previous[out.back()]);
   std::reverse(out.begin(), out.end());
   return out;
 }

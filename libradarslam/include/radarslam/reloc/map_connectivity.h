@@ -35,6 +35,13 @@ class MapConnectivity {
     std::size_t to;
     double length_m;
   };
+  /// Dijkstra from `from` over paths of at most max_path_m, stopped once `stop_at` is settled:
+  /// each keyframe's path distance (+inf when not reached) and its predecessor on that path.
+  struct Search {
+    std::vector<double> distance;
+    std::vector<std::size_t> previous;
+  };
+  Search search(std::size_t from, double max_path_m, std::size_t stop_at) const;
   std::vector<std::vector<Link>> adjacency_;
 };
 
