@@ -134,7 +134,8 @@ double graphPathLength(const SlamState& state, std::uint64_t from, std::uint64_t
   dist[from] = 0;
   open.emplace(0.0, from);
   while (!open.empty()) {
-    const auto [d, k] = open.top();
+    const double d = open.top().first;  // (not a structured binding: lambdas capture it below)
+    const std::uint64_t k = open.top().second;
     open.pop();
     if (k == to) return d;
     if (d > dist[k]) continue;
