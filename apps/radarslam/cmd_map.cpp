@@ -252,9 +252,8 @@ int runMap(int argc, char** argv) {
           buf, sizeof buf,
           "  loop truth     recall %.2f (%zu of %zu keyframes with a true loop), %zu false accepted "
           "(%zu left in the graph), max error of true loops %.2f m / %.2f deg, information NEES mean %.1f "
-          "(%.0f %% within chi2(3) 95 %%); %zu partial loops (along one line), %zu of them false; %zu "
-          "ambiguous "
-          "places confirmed by the next keyframes, %zu of them false\n",
+          "(%.0f %% within chi2(3) 95 %%); %zu partial loops (along one line), %zu of them false; "
+          "%zu ambiguous places confirmed by the next keyframes, %zu of them false\n",
           le.recall, le.keyframes_with_loop_found, le.keyframes_with_true_loop, le.false_accepted,
           le.false_in_graph, le.max_error_m, le.max_error_deg, le.nees_mean, 100 * le.nees_within_95,
           le.slide_accepted, le.slide_false, le.confirmed_accepted, le.confirmed_false);
@@ -329,9 +328,8 @@ int runMap(int argc, char** argv) {
     std::snprintf(
         buf, sizeof buf,
         "  loops          %zu candidates verified: %zu accepted (%zu of them ambiguous places confirmed "
-        "by the next keyframes; %zu confirmations held back by a rival placement, %zu withdrawn), %zu "
-        "rejected by "
-        "verification, %zu removed by the pose graph; %zu graph optimisations\n",
+        "by the next keyframes; %zu confirmations held back by a rival placement, %zu withdrawn), "
+        "%zu rejected by verification, %zu removed by the pose graph; %zu graph optimisations\n",
         stats.loop_candidates, stats.loops_accepted, stats.loops_confirmed, stats.confirmations_held_back,
         stats.confirmations_withdrawn, stats.loops_rejected, stats.loops_rejected_by_graph,
         stats.graph_optimisations);

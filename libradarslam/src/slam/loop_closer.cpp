@@ -66,8 +66,12 @@ bool LoopCloser::withdrawContradicted(const std::vector<std::size_t>& records) {
   return !records.empty();
 }
 
+bool LoopCloser::worthOptimising(double dm, double da) const {
+  const LoopClosingParams& lc = params_.loop_closing;
+  return dm > lc.optimise_min_correction_m || da > lc.optimise_min_correction_deg * M_PI / 180;
+}
+
 bool LoopCloser::confirmPending(const PendingLoop& loop, bool& optimise) {
-  const auto& lc = params_.loop_closing;
   const auto confirmed = confirmation_->add(loop, [&](std::uint64_t k) { return state_.keyframes[k].pose; });
   for (const PendingLoop& c : confirmed) {
     LoopRecord& rec = state_.records[c.record];
@@ -78,9 +82,8 @@ bool LoopCloser::confirmPending(const PendingLoop& loop, bool& optimise) {
     ++state_.stats.loops_confirmed;
     const TPose2D implied = compose(state_.keyframes[c.match].pose, c.relative);
     const TPose2D& q = state_.keyframes[c.query].pose;
-    optimise |=
-        std::hypot(implied.x - q.x, implied.y - q.y) > lc.optimise_min_correction_m ||
-        std::abs(std::remainder(implied.phi - q.phi, 2 * M_PI)) > lc.optimise_min_correction_deg * M_PI / 180;
+    optimise |= worthOptimising(std::hypot(implied.x - q.x, implied.y - q.y),
+                                std::abs(std::remainder(implied.phi - q.phi, 2 * M_PI)));
     state_.loops.push_back(AcceptedLoop{c.match, c.query, c.relative, c.information, c.record, true});
     logger().logFmt(mrpt::system::LVL_DEBUG, "slam: ambiguous loop %llu -> %llu confirmed",
                     static_cast<unsigned long long>(c.match), static_cast<unsigned long long>(c.query));
@@ -257,7 +260,7 @@ void LoopCloser::process(std::uint64_t id) {
             [&](std::uint64_t k) { return state_.keyframes[k].pose; }));
       if (!state_.anchored) anchorSession(implied, id);
       AcceptedLoop loop{rec.match, id, v.relative_pose, loop_information, state_.records.size() - 1, true};
-      optimise |= dm > lc.optimise_min_correction_m || da > lc.optimise_min_correction_deg * M_PI / 180;
+      optimise |= worthOptimising(dm, da);
       logger().logFmt(mrpt::system::LVL_DEBUG,
                       "slam: loop %llu -> %llu accepted (inliers %.2f, correction %.2f m)",
                       static_cast<unsigned long long>(loop.from), static_cast<unsigned long long>(loop.to),

@@ -22,13 +22,15 @@ class LoopCloser {
   void addMapKeyframe(std::uint64_t id);
 
  private:
-  /// Moves the whole new session by the correction a verified loop to the map implies.
   /// Hands a loop refused as ambiguous only to confirmation_ and adds the loops it confirms to the
   /// graph (state locked); true when it added any, `optimise` set when one moves its query far.
   bool confirmPending(const PendingLoop& loop, bool& optimise);
   /// Withdraws confirmed loops (records) a unique loop contradicts: inactive in the graph, refused in
   /// the records (state locked); true when any.
   bool withdrawContradicted(const std::vector<std::size_t>& records);
+  /// A loop's correction (dm metres, da radians) large enough to optimise the graph now.
+  bool worthOptimising(double dm, double da) const;
+  /// Moves the whole new session by the correction a verified loop to the map implies.
   void anchorSession(const TPose2D& implied_query_pose, std::uint64_t query);
   SlamState& state_;
   const SlamParams& params_;

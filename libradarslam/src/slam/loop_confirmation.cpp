@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
 #include <stdexcept>
+
 #include "radarslam/core/se2_covariance.h"
 
 namespace radarslam::slam_detail {
