@@ -44,10 +44,10 @@ real_seeds() {
 
 # Inputs up to 64 KiB: enough for a few-row polar PNG or a CSV head, keeps each run fast.
 max_len=65536
-total=0
-failed=()
-printf '%-22s %12s %10s %s\n' target executions exec/s result
-for exe in "$build"/test/fuzz/fuzz_*; do
+
+# One target: its corpus, its run, its exit code in $work/<target>.rc (log in $work/<target>.log).
+fuzz_target() {
+  local exe=$1 target corpus log
   target=$(basename "$exe")
   target=${target#fuzz_}
   corpus=$work/$target
@@ -62,13 +62,31 @@ for exe in "$build"/test/fuzz/fuzz_*; do
     LSAN_OPTIONS="suppressions=$src/test/sanitizers/lsan.supp:print_suppressions=0" \
     "$exe" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2560 -max_len=$max_len \
     -print_final_stats=1 -artifact_prefix="$artifacts/$target-" >"$log" 2>&1
-  rc=$?
+  echo $? > "$work/$target.rc"
   set -e
+}
+
+# The targets run side by side, one per core (each is single-threaded); reported in order below.
+jobs=$(nproc)
+for exe in "$build"/test/fuzz/fuzz_*; do
+  while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
+  fuzz_target "$exe" &
+done
+wait
+
+total=0
+failed=()
+printf '%-22s %12s %10s %s\n' target executions exec/s result
+for exe in "$build"/test/fuzz/fuzz_*; do
+  target=$(basename "$exe")
+  target=${target#fuzz_}
+  log=$work/$target.log
+  rc=$(cat "$work/$target.rc" 2>/dev/null || echo 127)
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
   execs=${execs:-0}
   total=$((total + execs))
-  if [ $rc -ne 0 ]; then
+  if [ "$rc" -ne 0 ]; then
     failed+=("$target")
     printf '%-22s %12s %10s %s\n' "$target" "$execs" "${rate:-?}" "FAILED (rc $rc)"
     grep -E -m5 'ERROR|SUMMARY|terminate|what\(\)|Test unit written' "$log" || tail -20 "$log"
@@ -82,7 +100,7 @@ for exe in "$build"/test/fuzz/fuzz_*; do
     printf '%-22s %12s %10s %s\n' "$target" "$execs" "${rate:-?}" ok
   fi
 done
-echo "total executions: $total (${seconds} s per target)"
+echo "total executions: $total (${seconds} s per target, $jobs at a time)"
 if [ ${#failed[@]} -ne 0 ]; then
   echo "fuzzing found problems in: ${failed[*]} (inputs in $artifacts)" >&2
   exit 1

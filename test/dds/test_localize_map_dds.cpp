@@ -16,6 +16,7 @@
 #include <radarslam/map/map_io.h>
 
 #include "dds_test_util.h"
+#include "simulated_dataset.h"
 #include "temp_dir.h"
 
 namespace radarslam {
@@ -53,9 +54,7 @@ struct PrivateTmpdir {
 
 TEST(LocalizeMapDds, PosesEqualTheOnesFromTheMapDirectoryAndFollowReloads) {
   test::TempDir tmp;
-  const fs::path data = tmp / "sim", map = tmp / "map";
-  ASSERT_EQ(runCli({"simulate", data.string(), "--scans", "40"}, tmp / "sim"), 0)
-      << test::readText(tmp / "sim.err");
+  const fs::path data = test::simulatedDataset("--scans 40"), map = tmp / "map";  // shared, read only
   ASSERT_EQ(runCli({"map-synth", data.string(), "-o", map.string()}, tmp / "synth"), 0)
       << test::readText(tmp / "synth.err");
   const unsigned dom = test::testDomainId(16);

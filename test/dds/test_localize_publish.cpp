@@ -17,6 +17,7 @@
 #include <radarslam/map/map_io.h>
 
 #include "dds_test_util.h"
+#include "simulated_dataset.h"
 #include "temp_dir.h"
 
 namespace radarslam {
@@ -47,13 +48,12 @@ int runCli(const std::vector<std::string>& args, const fs::path& log, double tim
   return c.wait(timeout_s);
 }
 
-/// A 40-scan simulated drive and a map-synth map of it (ground-truth keyframes).
+/// A 40-scan simulated drive (test/support/simulated_dataset.h: simulated once for all tests, read
+/// only) and a map-synth map of it (ground-truth keyframes).
 struct SmallWorld {
   test::TempDir tmp;
-  fs::path data = tmp.path() / "sim", map = tmp.path() / "map";
+  fs::path data = test::simulatedDataset("--scans 40"), map = tmp.path() / "map";
   SmallWorld() {
-    EXPECT_EQ(runCli({"simulate", data.string(), "--scans", "40"}, tmp.path() / "sim"), 0)
-        << test::readText(tmp.path() / "sim.err");
     EXPECT_EQ(runCli({"map-synth", data.string(), "-o", map.string()}, tmp.path() / "synth"), 0)
         << test::readText(tmp.path() / "synth.err");
   }
