@@ -20,6 +20,7 @@
 #include <radarslam/map/sha256.h>
 
 #include "dds_test_util.h"
+#include "simulated_dataset.h"
 #include "temp_dir.h"
 
 namespace radarslam {
@@ -96,14 +97,13 @@ int runCli(const std::vector<std::string>& args, const fs::path& log, double tim
   return c.wait(timeout_s);
 }
 
-/// A 40-scan simulated drive and a map-synth map of it (ground-truth keyframes): a 1969 x 1658
-/// grid (3.3 MB, so 55 fragments of 60 000 B), a 22 201-point cloud and a 0.1 MB OctoMap.
+/// A 40-scan simulated drive (test/support/simulated_dataset.h: simulated once for all tests, read
+/// only) and a map-synth map of it (ground-truth keyframes): a 1969 x 1658 grid (3.3 MB, so 55
+/// fragments of 60 000 B), a 22 201-point cloud and a 0.1 MB OctoMap.
 struct SmallWorld {
   test::TempDir tmp;
-  fs::path data = tmp.path() / "sim", map = tmp.path() / "map";
+  fs::path data = test::simulatedDataset("--scans 40"), map = tmp.path() / "map";
   SmallWorld() {
-    EXPECT_EQ(runCli({"simulate", data.string(), "--scans", "40"}, tmp.path() / "sim"), 0)
-        << test::readText(tmp.path() / "sim.err");
     EXPECT_EQ(runCli({"map-synth", data.string(), "-o", map.string()}, tmp.path() / "synth"), 0)
         << test::readText(tmp.path() / "synth.err");
   }
