@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include <radarslam/core/atomic_file.h>
 #include <radarslam/core/errors.h>
 #include <radarslam/core/input_file.h>
 #include <radarslam/core/log.h>
@@ -26,6 +27,7 @@
 #include "cli_common.h"
 #include "command.h"
 #include "dataset_config.h"
+#include "odometry_steps.h"
 #include "progress_line.h"
 
 namespace radarslam::cli {
@@ -58,6 +60,11 @@ int runOdometry(int argc, char** argv) {
   TCLAP::ValueArg<std::string> eval_arg(
       "", "eval-dir", "With ground truth: write the evaluation report (JSON) and plots here", false, "",
       "DIR", cmd.tclap());
+  TCLAP::ValueArg<std::string> steps_arg(
+      "", "steps",
+      "Per-scan diagnostics (CSV): status, matches, inliers, search radius, predicted and estimated motion, "
+      "stage time; with ground truth also the true motion and whether it lay outside the search radius",
+      false, "", "FILE", cmd.tclap());
   TCLAP::SwitchArg quiet_arg("q", "quiet", "No progress line", cmd.tclap());
   cmd.parse(argc, argv);
 
@@ -68,6 +75,12 @@ int runOdometry(int argc, char** argv) {
   if (!fs::exists(dir)) throw InputError(dir.string(), "no such file or directory");
   checkNoOverlap(dir, out);
   checkFileOutput(out);
+  if (steps_arg.isSet()) {
+    checkNoOverlap(dir, steps_arg.getValue());
+    checkFileOutput(steps_arg.getValue());
+    if (fs::absolute(steps_arg.getValue()).lexically_normal() == fs::absolute(out).lexically_normal())
+      throw InputError(steps_arg.getValue(), "--steps names the same file as --output");
+  }
   if (eval_arg.isSet()) {
     checkNoOverlap(dir, eval_arg.getValue());
     checkDirectoryOutput(eval_arg.getValue(), "--eval-dir");
@@ -103,10 +116,12 @@ int runOdometry(int argc, char** argv) {
   const auto t0 = Clock::now();
   std::size_t done = 0, lost = 0, keyframes = 0, widened = 0, second_motion = 0;
   StageTimes total;
+  std::vector<StepRecord> steps;
   ProgressLine progress("odometry", scans.total(), !quiet_arg.getValue());
   const auto tail = [&] { return "lost " + std::to_string(lost); };
   while (const auto scan = scans.next()) {
     const OdometryStep step = odometry.process(*scan);
+    if (steps_arg.isSet()) steps.push_back(recordOf(step));
     ++done;
     lost += step.status == TrackingStatus::Lost;
     keyframes += step.new_keyframe;
@@ -123,6 +138,9 @@ int runOdometry(int argc, char** argv) {
   const Trajectory& traj = odometry.trajectory();
   if (traj.empty()) throw InputError(dir.string(), "no scan could be read");
   writeTumTrajectory(out, traj);
+  TruthAt truth;
+  if (reader->hasGroundTruth()) truth = [&reader](StampNs t) { return reader->groundTruthAt(t); };
+  if (steps_arg.isSet()) writeTextAtomically(steps_arg.getValue(), formatSteps(steps, truth));
 
   const double n = static_cast<double>(done);
   std::printf("odometry summary\n");
@@ -147,6 +165,15 @@ int runOdometry(int argc, char** argv) {
       total.describe / n, total.align_prep / n, total.match / n, total.clique / n, total.svd / n,
       total.refine / n);
   std::printf("  trajectory     %s\n", out.string().c_str());
+  if (steps_arg.isSet()) {
+    std::printf("  steps          %s", steps_arg.getValue().c_str());
+    if (truth) {
+      const StepTruthSummary t = summarizeTruth(steps, truth);
+      std::printf(" (true motion outside the search radius in %zu of %zu scans)", t.outside_radius,
+                  t.compared);
+    }
+    std::printf("\n");
+  }
 
   if (reader->hasGroundTruth()) {
     std::optional<eval::EvalReport> evaluated;

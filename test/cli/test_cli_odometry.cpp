@@ -3,16 +3,21 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <set>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli_run.h"
 #include "radarslam/io/dataset.h"
 #include "radarslam/io/trajectory_files.h"
 #include "shared_data.h"
+#include "simulated_dataset.h"
 #include "temp_dir.h"
 
 namespace {
@@ -84,6 +89,99 @@ TEST(CliOdometry, BadInputIsAOneLineError) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("--count"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(traj));
+}
+
+std::vector<std::vector<std::string>> readCsv(const std::filesystem::path& file) {
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> fields;
+    std::stringstream ss(line);
+    for (std::string f; std::getline(ss, f, ',');) fields.push_back(f);
+    if (!line.empty() && line.back() == ',') fields.emplace_back();
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
+TEST(CliOdometry, StepsRecordEveryScanItsPredictionAndTheTruth) {
+  namespace fs = std::filesystem;
+  const fs::path data = radarslam::test::simulatedDataset("--scans 40");
+  radarslam::test::TempDir tmp;
+  const auto traj = tmp / "t.tum", steps = tmp / "steps.csv";
+  const Result r = runOdometry(
+      "'" + data.string() + "' -o '" + traj.string() + "' --steps '" + steps.string() + "' -q", tmp);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto rows = readCsv(steps);
+  ASSERT_EQ(rows.size(), 41u);  // header + one row per scan
+  const std::vector<std::string>& header = rows[0];
+  ASSERT_EQ(header.size(), 23u);
+  auto column = [&header](const std::string& name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    EXPECT_NE(it, header.end()) << name;
+    return static_cast<std::size_t>(it - header.begin());
+  };
+  const std::size_t status = column("status"), radius = column("radius_m"), pdx = column("pred_dx_m"),
+                    pdy = column("pred_dy_m"), edx = column("est_dx_m"), edy = column("est_dy_m"),
+                    tdx = column("true_dx_m"), tdy = column("true_dy_m"), err = column("est_error_m"),
+                    outside = column("true_outside_radius");
+  EXPECT_EQ(rows[1][status], "initialised");
+  EXPECT_EQ(rows[1][tdx], "");  // no previous scan: no true motion
+  const radarslam::Trajectory t = radarslam::readTumTrajectory(traj);
+  ASSERT_EQ(t.size(), 40u);
+  const auto reader = radarslam::openDataset(data);
+  const std::set<std::string> statuses{"tracking", "lost", "recovered"};
+  std::size_t outside_count = 0, compared = 0;
+  for (std::size_t i = 2; i < rows.size(); ++i) {
+    const auto& row = rows[i];
+    ASSERT_EQ(row.size(), header.size()) << "row " << i;
+    EXPECT_TRUE(statuses.count(row[status])) << row[status];
+    auto num = [&row](std::size_t c) { return std::stod(row[c]); };
+    // The estimated motion is the trajectory's step; the true one the ground truth's.
+    const auto est = t[i - 1].pose - t[i - 2].pose;
+    EXPECT_NEAR(num(edx), est.x, 2e-4);
+    EXPECT_NEAR(num(edy), est.y, 2e-4);
+    const auto g0 = reader->groundTruthAt(t[i - 2].stamp), g1 = reader->groundTruthAt(t[i - 1].stamp);
+    if (!g0 || !g1) {  // the ground truth does not cover this step: no truth columns
+      EXPECT_EQ(row[tdx], "");
+      continue;
+    }
+    ++compared;
+    const auto truth = *g1 - *g0;
+    EXPECT_NEAR(num(tdx), truth.x, 2e-4);
+    EXPECT_NEAR(num(tdy), truth.y, 2e-4);
+    EXPECT_NEAR(num(err), std::hypot(est.x - truth.x, est.y - truth.y), 2e-3);
+    const double pred_error = std::hypot(num(tdx) - num(pdx), num(tdy) - num(pdy));
+    if (std::abs(pred_error - num(radius)) > 1e-3) {
+      EXPECT_EQ(row[outside], pred_error > num(radius) ? "1" : "0");
+    }
+    outside_count += row[outside] == "1";
+    if (i > 2) {
+      EXPECT_GT(num(radius), 0.0);
+    }
+  }
+  EXPECT_NE(r.out.find("true motion outside the search radius in " + std::to_string(outside_count) + " of " +
+                       std::to_string(compared) + " scans"),
+            std::string::npos)
+      << r.out;
+}
+
+TEST(CliOdometry, StepsFileIsValidatedBeforeTheRun) {
+  namespace fs = std::filesystem;
+  const fs::path data = radarslam::test::simulatedDataset("--scans 40");
+  radarslam::test::TempDir tmp;
+  const auto traj = tmp / "t.tum";
+  Result r = runOdometry(
+      "'" + data.string() + "' -o '" + traj.string() + "' --steps '" + traj.string() + "' -q", tmp);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--steps"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(traj));
+  r = runOdometry(
+      "'" + data.string() + "' -o '" + traj.string() + "' --steps '" + tmp.path().string() + "' -q", tmp);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(traj));
 }
 
 }  // namespace

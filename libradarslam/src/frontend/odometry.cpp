@@ -291,6 +291,8 @@ struct RadarOdometry::Impl {
     BodyVelocity cur_compensation = v;
     f.compensate(v, mc);
     auto t0 = Clock::now();
+    step.predicted_motion = predicted_delta;
+    step.search_radius = radius;
     Correspondences matches =
         matchWithinRadius(f.features, keyframe.features, prior, radius, params.matching);
     step.times.match = msSince(t0);
@@ -327,6 +329,7 @@ struct RadarOdometry::Impl {
         step.matches = static_cast<int>(matches.size());
         step.inliers = static_cast<int>(inliers.size());
         step.widened = true;
+        step.search_radius = SearchRadius::fixed(params.matching.init_radius_m);
       }
     }
     last_matches = step.matches;

@@ -19,6 +19,7 @@
 #include "radarslam/core/trajectory.h"
 #include "radarslam/frontend/motion_compensation.h"
 #include "radarslam/frontend/odometry_params.h"
+#include "radarslam/frontend/radius_matcher.h"
 
 namespace radarslam {
 
@@ -50,7 +51,12 @@ struct OdometryStep {
   StampNs stamp = 0;           ///< the scan's reference time
   mrpt::math::TPose2D pose;    ///< radar pose in the first scan's frame
   mrpt::math::TPose2D motion;  ///< T_previous_current
-  BodyVelocity velocity;       ///< body-frame velocity estimate after this scan
+  /// The constant-velocity prediction of `motion` the matches were searched around (zero without a
+  /// velocity: the first scans, after a data gap).
+  mrpt::math::TPose2D predicted_motion;
+  /// The motion-prior search radius the matches were found in (the wide one when `widened`).
+  SearchRadius search_radius;
+  BodyVelocity velocity;  ///< body-frame velocity estimate after this scan
   TrackingStatus status = TrackingStatus::Initialised;
   int keypoints = 0, matches = 0, inliers = 0;
   bool clique_exact = true;
