@@ -4,6 +4,7 @@
 #include <tclap/CmdLine.h>
 
 #include <cstddef>
+#include <cstdio>
 #include <string>
 
 namespace radarslam::cli {
@@ -12,6 +13,14 @@ namespace radarslam::cli {
 /// decoding (~10 ms per Oxford PNG) overlaps the work on the previous scans. 4 scans of the largest
 /// sensor (RAS6, 2.7 MB) hold 11 MB.
 constexpr std::size_t kPrefetchScans = 4;
+
+/// printf-style formatting into a string (at most 511 characters: one CSV row or report line).
+template <typename... Args>
+std::string formatText(const char* format, Args... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, format, args...);
+  return buf;
+}
 
 /// A TCLAP command line with radarslam's conventions: --help, --version, and --verbosity
 /// (DEBUG|INFO|WARN|ERROR, default INFO) applied to the radarslam logger on parse().

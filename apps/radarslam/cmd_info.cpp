@@ -17,12 +17,6 @@
 namespace radarslam::cli {
 namespace {
 
-std::string fmt(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
 // Which optional file would have held the ground truth, and what its absence disables.
 std::string missingGroundTruth(DatasetKind kind) {
   const char* file = nullptr;
@@ -74,7 +68,7 @@ int runInfo(int argc, char** argv) {
             << "sensor:        " << reader->sensorName() << "\n"
             << "scans:         " << reader->size() << "\n";
   const double duration = toSeconds(reader->indexStamp(reader->size() - 1) - reader->indexStamp(0));
-  std::cout << "duration:      " << fmt("%.3f", duration) << " s (first to last scan stamp)\n";
+  std::cout << "duration:      " << formatText("%.3f", duration) << " s (first to last scan stamp)\n";
 
   // Geometry from the first scan that decodes (a sequence may list scans that are missing).
   CObservationRadarScan::Ptr scan;
@@ -91,11 +85,12 @@ int runInfo(int argc, char** argv) {
     throw InputError(path.string(), "no scan could be decoded; first error: " + first_error.value_or("?"));
   --first_ok;
   std::cout << "geometry:      " << scan->num_azimuths << " azimuths x " << scan->num_bins << " bins, "
-            << fmt("%.6g", scan->range_resolution_m) << " m/bin, range offset "
-            << fmt("%.6g", scan->range_offset_m) << " m, max range " << fmt("%.1f", scan->maxRange())
-            << " m\n"
+            << formatText("%.6g", scan->range_resolution_m) << " m/bin, range offset "
+            << formatText("%.6g", scan->range_offset_m) << " m, max range "
+            << formatText("%.1f", scan->maxRange()) << " m\n"
             << "sweep:         "
-            << fmt("%.1f", toSeconds(scan->azimuth_stamps_ns.back() - scan->azimuth_stamps_ns.front()) * 1e3)
+            << formatText("%.1f",
+                          toSeconds(scan->azimuth_stamps_ns.back() - scan->azimuth_stamps_ns.front()) * 1e3)
             << " ms first to last azimuth (scan " << first_ok << ": "
             << reader->scanPath(first_ok).filename().string() << ")\n";
   if (scan->hasChirpDirections()) {
@@ -110,8 +105,8 @@ int runInfo(int argc, char** argv) {
   if (reader->hasGroundTruth()) {
     const auto& gt = reader->groundTruth();
     std::cout << "ground truth:  yes, " << gt.size() << " poses over "
-              << fmt("%.1f", toSeconds(gt.back().stamp - gt.front().stamp)) << " s, path length "
-              << fmt("%.3f", pathLength(gt) / 1000.0) << " km\n";
+              << formatText("%.1f", toSeconds(gt.back().stamp - gt.front().stamp)) << " s, path length "
+              << formatText("%.3f", pathLength(gt) / 1000.0) << " km\n";
   } else {
     std::cout << "ground truth:  no" << missingGroundTruth(reader->kind()) << "\n";
   }

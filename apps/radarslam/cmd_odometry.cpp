@@ -78,8 +78,7 @@ int runOdometry(int argc, char** argv) {
   if (steps_arg.isSet()) {
     checkNoOverlap(dir, steps_arg.getValue());
     checkFileOutput(steps_arg.getValue());
-    if (fs::absolute(steps_arg.getValue()).lexically_normal() == fs::absolute(out).lexically_normal())
-      throw InputError(steps_arg.getValue(), "--steps names the same file as --output");
+    checkDistinctOutputs(out, steps_arg.getValue(), "--steps");
   }
   if (eval_arg.isSet()) {
     checkNoOverlap(dir, eval_arg.getValue());
@@ -138,8 +137,9 @@ int runOdometry(int argc, char** argv) {
   const Trajectory& traj = odometry.trajectory();
   if (traj.empty()) throw InputError(dir.string(), "no scan could be read");
   writeTumTrajectory(out, traj);
-  TruthAt truth;
-  if (reader->hasGroundTruth()) truth = [&reader](StampNs t) { return reader->groundTruthAt(t); };
+  std::optional<StepTruth> truth;
+  if (steps_arg.isSet() && reader->hasGroundTruth())
+    truth = trueMotions(steps, [&reader](StampNs t) { return reader->groundTruthAt(t); });
   if (steps_arg.isSet()) writeTextAtomically(steps_arg.getValue(), formatSteps(steps, truth));
 
   const double n = static_cast<double>(done);
@@ -168,7 +168,7 @@ int runOdometry(int argc, char** argv) {
   if (steps_arg.isSet()) {
     std::printf("  steps          %s", steps_arg.getValue().c_str());
     if (truth) {
-      const StepTruthSummary t = summarizeTruth(steps, truth);
+      const StepTruthSummary t = summarizeTruth(steps, *truth);
       std::printf(" (true motion outside the search radius in %zu of %zu scans)", t.outside_radius,
                   t.compared);
     }

@@ -1,35 +1,24 @@
 #include "odometry_steps.h"
 
+#include "cli_common.h"
+
 #include <cmath>
-#include <cstdio>
 #include <string>
 
+#include <mrpt/core/bits_math.h>
+#include <mrpt/math/wrap2pi.h>
 #include <radarslam/io/trajectory_files.h>
 
 namespace radarslam::cli {
 namespace {
 
-double degrees(double rad) { return std::remainder(rad, 2.0 * M_PI) * 180.0 / M_PI; }
-
-/// T_previous_current from the ground truth at both stamps.
-std::optional<mrpt::math::TPose2D> trueMotion(const TruthAt& truth, StampNs prev, StampNs cur) {
-  if (!truth) return std::nullopt;
-  const auto a = truth(prev), b = truth(cur);
-  if (!a || !b) return std::nullopt;
-  return *b - *a;
-}
+double degrees(double rad) { return mrpt::RAD2DEG(mrpt::math::wrapToPi(rad)); }
 
 /// The prediction's translation error at the sensor against the truth exceeds the search radius
 /// there (SearchRadius::at(0): its fixed part).
 bool outsideRadius(const StepRecord& s, const mrpt::math::TPose2D& truth) {
   const mrpt::math::TPose2D error = truth - s.predicted;
   return std::hypot(error.x, error.y) > s.search_radius.at(0.0);
-}
-
-std::string format(const char* fmt, auto... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, fmt, args...);
-  return buf;
 }
 
 }  // namespace
@@ -47,7 +36,18 @@ StepRecord recordOf(const OdometryStep& step) {
   return r;
 }
 
-std::string formatSteps(const std::vector<StepRecord>& steps, const TruthAt& truth) {
+StepTruth trueMotions(const std::vector<StepRecord>& steps, const TruthAt& truth) {
+  StepTruth motions(steps.size());
+  std::optional<mrpt::math::TPose2D> previous;
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const auto current = truth(steps[i].stamp);
+    if (previous && current) motions[i] = *current - *previous;
+    previous = current;
+  }
+  return motions;
+}
+
+std::string formatSteps(const std::vector<StepRecord>& steps, const std::optional<StepTruth>& truth) {
   std::string text =
       "stamp_s,status,keypoints,matches,inliers,radius_m,radius_per_m,pred_dx_m,pred_dy_m,pred_dyaw_deg,"
       "est_dx_m,est_dy_m,est_dyaw_deg,widened,second_motion,implausible,new_keyframe,track_ms";
@@ -56,17 +56,16 @@ std::string formatSteps(const std::vector<StepRecord>& steps, const TruthAt& tru
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const StepRecord& s = steps[i];
     text += formatStampSeconds(s.stamp) + "," + toString(s.status);
-    text +=
-        format(",%d,%d,%d,%.4f,%.6f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%d,%d,%d,%d,%.2f", s.keypoints, s.matches,
-               s.inliers, s.search_radius.at(0.0), s.search_radius.per_range, s.predicted.x, s.predicted.y,
-               degrees(s.predicted.phi), s.estimated.x, s.estimated.y, degrees(s.estimated.phi),
-               int{s.widened}, int{s.second_motion}, int{s.implausible}, int{s.new_keyframe}, s.ms);
+    text += formatText(",%d,%d,%d,%.4f,%.6f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%d,%d,%d,%d,%.2f", s.keypoints,
+                       s.matches, s.inliers, s.search_radius.at(0.0), s.search_radius.per_range,
+                       s.predicted.x, s.predicted.y, degrees(s.predicted.phi), s.estimated.x, s.estimated.y,
+                       degrees(s.estimated.phi), int{s.widened}, int{s.second_motion}, int{s.implausible},
+                       int{s.new_keyframe}, s.ms);
     if (truth) {
-      const auto t = i > 0 ? trueMotion(truth, steps[i - 1].stamp, s.stamp) : std::nullopt;
-      if (t) {
+      if (const auto& t = truth->at(i)) {
         const mrpt::math::TPose2D error = s.estimated - *t;
-        text += format(",%.4f,%.4f,%.4f,%.4f,%d", t->x, t->y, degrees(t->phi), std::hypot(error.x, error.y),
-                       int{outsideRadius(s, *t)});
+        text += formatText(",%.4f,%.4f,%.4f,%.4f,%d", t->x, t->y, degrees(t->phi),
+                           std::hypot(error.x, error.y), int{outsideRadius(s, *t)});
       } else {
         text += ",,,,,";
       }
@@ -76,13 +75,12 @@ std::string formatSteps(const std::vector<StepRecord>& steps, const TruthAt& tru
   return text;
 }
 
-StepTruthSummary summarizeTruth(const std::vector<StepRecord>& steps, const TruthAt& truth) {
+StepTruthSummary summarizeTruth(const std::vector<StepRecord>& steps, const StepTruth& truth) {
   StepTruthSummary sum;
-  for (std::size_t i = 1; i < steps.size(); ++i) {
-    const auto t = trueMotion(truth, steps[i - 1].stamp, steps[i].stamp);
-    if (!t) continue;
+  for (std::size_t i = 0; i < steps.size() && i < truth.size(); ++i) {
+    if (!truth[i]) continue;
     ++sum.compared;
-    sum.outside_radius += outsideRadius(steps[i], *t);
+    sum.outside_radius += outsideRadius(steps[i], *truth[i]);
   }
   return sum;
 }

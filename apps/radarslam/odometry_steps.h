@@ -29,14 +29,19 @@ StepRecord recordOf(const OdometryStep& step);
 /// The ground truth pose at a stamp (nullopt outside its time span).
 using TruthAt = std::function<std::optional<mrpt::math::TPose2D>(StampNs)>;
 
-/// The CSV text (header line first). With `truth`, the true motion columns are filled wherever the
-/// ground truth covers both scans of a step, and left empty elsewhere.
-std::string formatSteps(const std::vector<StepRecord>& steps, const TruthAt& truth);
+/// Each step's true motion T_previous_current (nullopt for the first step and wherever the ground
+/// truth does not cover both scans).
+using StepTruth = std::vector<std::optional<mrpt::math::TPose2D>>;
+StepTruth trueMotions(const std::vector<StepRecord>& steps, const TruthAt& truth);
+
+/// The CSV text (header line first). With `truth` (one entry per step) the true motion columns are
+/// added, filled where the truth is known and left empty elsewhere.
+std::string formatSteps(const std::vector<StepRecord>& steps, const std::optional<StepTruth>& truth);
 
 /// Summary of the truth columns: scans whose true motion lay outside the search radius.
 struct StepTruthSummary {
   std::size_t compared = 0, outside_radius = 0;
 };
-StepTruthSummary summarizeTruth(const std::vector<StepRecord>& steps, const TruthAt& truth);
+StepTruthSummary summarizeTruth(const std::vector<StepRecord>& steps, const StepTruth& truth);
 
 }  // namespace radarslam::cli

@@ -177,6 +177,13 @@ TEST(CliOdometry, StepsFileIsValidatedBeforeTheRun) {
   EXPECT_NE(r.err.find("--steps"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(fs::exists(traj));
+  fs::create_symlink("t.tum", tmp / "alias.csv");  // the trajectory file under another name
+  r = runOdometry(
+      "'" + data.string() + "' -o '" + traj.string() + "' --steps '" + (tmp / "alias.csv").string() + "' -q",
+      tmp);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("same file"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(traj));
   r = runOdometry(
       "'" + data.string() + "' -o '" + traj.string() + "' --steps '" + tmp.path().string() + "' -q", tmp);
   EXPECT_EQ(r.code, 1);

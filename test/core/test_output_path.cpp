@@ -36,6 +36,27 @@ TEST(OutputPath, NoOverlapBetweenInputAndOutput) {
   EXPECT_THROW(radarslam::checkNoOverlap(tmp / "alias", tmp / "data" / "m"), InputError);
 }
 
+TEST(OutputPath, TwoOutputsOfOneRunAreDistinctFiles) {
+  radarslam::test::TempDir tmp;
+  fs::create_directory(tmp / "out");
+  EXPECT_NO_THROW(radarslam::checkDistinctOutputs(tmp / "out" / "a.tum", tmp / "out" / "b.csv", "--steps"));
+  EXPECT_THROW(radarslam::checkDistinctOutputs(tmp / "out" / "a.tum", tmp / "out" / "a.tum", "--steps"),
+               InputError);
+  EXPECT_THROW(
+      radarslam::checkDistinctOutputs(tmp / "out" / "a.tum", tmp / "out" / ".." / "out" / "a.tum", "--steps"),
+      InputError);
+  fs::create_directory_symlink("out", tmp / "alias");  // the same directory under another name
+  EXPECT_THROW(radarslam::checkDistinctOutputs(tmp / "out" / "a.tum", tmp / "alias" / "a.tum", "--steps"),
+               InputError);
+  fs::create_symlink("a.tum", tmp / "out" / "link.tum");  // a dangling link to the first output
+  try {
+    radarslam::checkDistinctOutputs(tmp / "out" / "a.tum", tmp / "out" / "link.tum", "--steps");
+    ADD_FAILURE() << "a link to the first output was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--steps names the same file as"), std::string::npos) << e.what();
+  }
+}
+
 TEST(OutputPath, MapOutputReplacesOnlyAMap) {
   radarslam::test::TempDir tmp;
   fs::create_directories(tmp / "map");

@@ -115,6 +115,11 @@ void checkNoOverlap(const fs::path& input, const fs::path& output, bool allow_in
     throw InputError(output.string(), "is inside the input " + input.string());
 }
 
+void checkDistinctOutputs(const fs::path& first, const fs::path& second, const std::string& option) {
+  if (canonicalAsFarAsPossible(followSymlinks(first)) == canonicalAsFarAsPossible(followSymlinks(second)))
+    throw InputError(second.string(), option + " names the same file as " + first.string());
+}
+
 fs::path stagingSibling(const fs::path& path, const std::string& tag) {
   const fs::path p = withoutTrailingSlash(path);
   std::string name(1, '.');

@@ -34,6 +34,11 @@ void checkDirectoryOutput(const std::filesystem::path& dir, const std::string& o
 void checkNoOverlap(const std::filesystem::path& input, const std::filesystem::path& output,
                     bool allow_inside = false);
 
+/// Refuses two outputs of one run naming the same file (absolute paths, symbolic links resolved):
+/// the second would replace the first. `option` names the second in the message.
+void checkDistinctOutputs(const std::filesystem::path& first, const std::filesystem::path& second,
+                          const std::string& option);
+
 /// "<parent>/.<name>.<tag>.<pid>": a hidden sibling of `path` to build a directory output in
 /// before it is renamed into place.
 std::filesystem::path stagingSibling(const std::filesystem::path& path, const std::string& tag);
