@@ -55,7 +55,9 @@ std::string formatSteps(const std::vector<StepRecord>& steps, const std::optiona
   text += "\n";
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const StepRecord& s = steps[i];
-    text += formatStampSeconds(s.stamp) + "," + toString(s.status);
+    text += formatStampSeconds(s.stamp);
+    text += ',';
+    text += toString(s.status);
     text += formatText(",%d,%d,%d,%.4f,%.6f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%d,%d,%d,%d,%.2f", s.keypoints,
                        s.matches, s.inliers, s.search_radius.at(0.0), s.search_radius.per_range,
                        s.predicted.x, s.predicted.y, degrees(s.predicted.phi), s.estimated.x, s.estimated.y,
