@@ -167,12 +167,28 @@ int runOdometry(int argc, char** argv) {
   std::printf("  trajectory     %s\n", out.string().c_str());
   if (steps_arg.isSet()) {
     std::printf("  steps          %s", steps_arg.getValue().c_str());
-    if (truth) {
-      const StepTruthSummary t = summarizeTruth(steps, *truth);
-      std::printf(" (true motion outside the search radius in %zu of %zu scans)", t.outside_radius,
-                  t.compared);
+    const std::optional<StepTruthSummary> t =
+        truth ? std::optional(summarizeTruth(steps, *truth)) : std::nullopt;
+    if (t) {
+      std::printf(" (true motion outside the search radius in %zu of %zu scans)", t->outside_radius,
+                  t->compared);
     }
     std::printf("\n");
+    if (t) {
+      std::printf("  heading        straight scans (true turn < %.2f deg): ", kStraightDeg);
+      if (t->straight > 0)
+        std::printf("mean error %+.4f deg per scan over %zu scans",
+                    t->straight_heading_error_deg / t->straight, t->straight);
+      else
+        std::printf("none");
+      std::printf("; turning scans (>= %.1f deg): ", kTurningDeg);
+      if (t->turning > 0)
+        std::printf("%.1f %% of the true turn estimated over %zu scans",
+                    100.0 * t->turning_estimated_deg / t->turning_true_deg, t->turning);
+      else
+        std::printf("none");
+      std::printf("\n");
+    }
   }
 
   if (reader->hasGroundTruth()) {

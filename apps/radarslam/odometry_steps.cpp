@@ -83,6 +83,17 @@ StepTruthSummary summarizeTruth(const std::vector<StepRecord>& steps, const Step
     if (!truth[i]) continue;
     ++sum.compared;
     sum.outside_radius += outsideRadius(steps[i], *truth[i]);
+    const TrackingStatus status = steps[i].status;
+    if (status != TrackingStatus::Tracking && status != TrackingStatus::Recovered) continue;
+    const double true_deg = degrees(truth[i]->phi), estimated_deg = degrees(steps[i].estimated.phi);
+    if (std::abs(true_deg) < kStraightDeg) {
+      ++sum.straight;
+      sum.straight_heading_error_deg += degrees(mrpt::DEG2RAD(estimated_deg - true_deg));
+    } else if (std::abs(true_deg) >= kTurningDeg) {
+      ++sum.turning;
+      sum.turning_true_deg += std::abs(true_deg);
+      sum.turning_estimated_deg += true_deg < 0 ? -estimated_deg : estimated_deg;
+    }
   }
   return sum;
 }

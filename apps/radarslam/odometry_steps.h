@@ -38,9 +38,18 @@ StepTruth trueMotions(const std::vector<StepRecord>& steps, const TruthAt& truth
 /// added, filled where the truth is known and left empty elsewhere.
 std::string formatSteps(const std::vector<StepRecord>& steps, const std::optional<StepTruth>& truth);
 
-/// Summary of the truth columns: scans whose true motion lay outside the search radius.
+/// A scan whose true heading change is below this goes straight; at or above kTurningDeg it turns.
+constexpr double kStraightDeg = 0.05, kTurningDeg = 0.5;
+
+/// Summary of the truth columns: scans whose true motion lay outside the search radius, and the
+/// heading of the tracked scans (tracking or recovered; a lost scan's motion is the prediction):
+/// the mean heading error on straight scans (a bias that turns a straight road;
+/// docs/odometry.md, "Heading bias on straight roads") and the estimated share of the turns.
 struct StepTruthSummary {
   std::size_t compared = 0, outside_radius = 0;
+  std::size_t straight = 0, turning = 0;
+  double straight_heading_error_deg = 0.0;                     ///< summed over the straight scans
+  double turning_estimated_deg = 0.0, turning_true_deg = 0.0;  ///< |heading change| summed over turning scans
 };
 StepTruthSummary summarizeTruth(const std::vector<StepRecord>& steps, const StepTruth& truth);
 

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -124,7 +125,8 @@ TEST(CliOdometry, StepsRecordEveryScanItsPredictionAndTheTruth) {
   const std::size_t status = column("status"), radius = column("radius_m"), pdx = column("pred_dx_m"),
                     pdy = column("pred_dy_m"), edx = column("est_dx_m"), edy = column("est_dy_m"),
                     tdx = column("true_dx_m"), tdy = column("true_dy_m"), err = column("est_error_m"),
-                    outside = column("true_outside_radius");
+                    outside = column("true_outside_radius"), edyaw = column("est_dyaw_deg"),
+                    tdyaw = column("true_dyaw_deg");
   EXPECT_EQ(rows[1][status], "initialised");
   EXPECT_EQ(rows[1][tdx], "");  // no previous scan: no true motion
   const radarslam::Trajectory t = radarslam::readTumTrajectory(traj);
@@ -132,6 +134,10 @@ TEST(CliOdometry, StepsRecordEveryScanItsPredictionAndTheTruth) {
   const auto reader = radarslam::openDataset(data);
   const std::set<std::string> statuses{"tracking", "lost", "recovered"};
   std::size_t outside_count = 0, compared = 0;
+  // The heading summary's figures, from the rows: straight and turning tracked scans.
+  std::size_t straight = 0, turning = 0;
+  double straight_error = 0, turn_estimated = 0, turn_true = 0;
+  bool borderline = false;  // a true turn within the CSV's rounding of a class bound
   for (std::size_t i = 2; i < rows.size(); ++i) {
     const auto& row = rows[i];
     ASSERT_EQ(row.size(), header.size()) << "row " << i;
@@ -156,6 +162,18 @@ TEST(CliOdometry, StepsRecordEveryScanItsPredictionAndTheTruth) {
       EXPECT_EQ(row[outside], pred_error > num(radius) ? "1" : "0");
     }
     outside_count += row[outside] == "1";
+    if (row[status] != "lost") {
+      const double turn = num(tdyaw), estimated = num(edyaw);
+      borderline |= std::abs(std::abs(turn) - 0.05) < 2e-4 || std::abs(std::abs(turn) - 0.5) < 2e-4;
+      if (std::abs(turn) < 0.05) {
+        ++straight;
+        straight_error += estimated - turn;
+      } else if (std::abs(turn) >= 0.5) {
+        ++turning;
+        turn_true += std::abs(turn);
+        turn_estimated += turn < 0 ? -estimated : estimated;
+      }
+    }
     if (i > 2) {
       EXPECT_GT(num(radius), 0.0);
     }
@@ -164,6 +182,24 @@ TEST(CliOdometry, StepsRecordEveryScanItsPredictionAndTheTruth) {
                        std::to_string(compared) + " scans"),
             std::string::npos)
       << r.out;
+  std::smatch m;
+  ASSERT_TRUE(
+      std::regex_search(r.out, m,
+                        std::regex("heading +straight scans \\(true turn < 0\\.05 deg\\): (mean error "
+                                   "([-+0-9.]+) deg per scan over ([0-9]+) scans|none); turning scans "
+                                   "\\(>= 0\\.5 deg\\): (([0-9.]+) % of the true turn estimated over "
+                                   "([0-9]+) scans|none)\n")))
+      << r.out;
+  if (borderline) return;
+  ASSERT_GT(straight, 0u);  // the drive starts on a straight road
+  EXPECT_EQ(std::stoul(m[3].str()), straight);
+  EXPECT_NEAR(std::stod(m[2].str()), straight_error / straight, 2e-4);
+  if (turning == 0) {
+    EXPECT_EQ(m[4].str(), "none");
+  } else {
+    EXPECT_EQ(std::stoul(m[6].str()), turning);
+    EXPECT_NEAR(std::stod(m[5].str()), 100.0 * turn_estimated / turn_true, 0.1);
+  }
 }
 
 TEST(CliOdometry, StepsFileIsValidatedBeforeTheRun) {
