@@ -1,4 +1,5 @@
 #include "png_fast_decode.h"
+#include "png_bytes.h"
 
 #include <libdeflate.h>
 
@@ -11,10 +12,6 @@
 namespace radarslam::io_detail {
 
 namespace {
-
-std::uint32_t be32(const unsigned char* p) {
-  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
-}
 
 bool isCritical(const unsigned char* type) { return (type[0] & 0x20) == 0; }  // upper-case first letter
 

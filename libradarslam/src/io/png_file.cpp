@@ -1,5 +1,6 @@
 #include "png_file.h"
 
+#include "png_bytes.h"
 #include "png_decode.h"
 
 #include <zlib.h>
@@ -18,10 +19,6 @@ namespace radarslam::io_detail {
 namespace {
 
 constexpr std::array<unsigned char, 8> kSignature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-
-std::uint32_t be32(const unsigned char* p) {
-  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
-}
 
 // CRC-32 as PNG specifies it (ISO 3309) is zlib's crc32 (already linked through libpng), which
 // is several times faster than a byte-wise table: it runs over every byte of every scan file.

@@ -105,4 +105,10 @@ std::optional<std::string> hexDecode(const std::string& hex) {
   return out;
 }
 
+std::string exactDouble(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
 }  // namespace radarslam::mapcodec

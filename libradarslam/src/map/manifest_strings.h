@@ -15,6 +15,9 @@ std::string yamlQuoted(const std::string& s);
 /// True if yamlQuoted(s) does not read back as exactly `s` through YamlParams.
 bool needsHexTwin(const std::string& s);
 
+/// `v` with 17 significant digits: reads back as the same double.
+std::string exactDouble(double v);
+
 std::string hexEncode(const std::string& bytes);
 /// nullopt unless `hex` is an even number of hex digits.
 std::optional<std::string> hexDecode(const std::string& hex);

@@ -227,12 +227,6 @@ std::string utcText(StampNs t) {
   return buf;
 }
 
-std::string fmtDouble(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 struct WrittenFile {
   std::string key, name, sha256;
   std::size_t bytes = 0;
@@ -251,8 +245,8 @@ std::string manifestText(const KeyframeMap& map, StampNs created, const std::vec
     << "sensor:\n"
     << "  num_azimuths: " << map.meta.sensor.num_azimuths << "\n"
     << "  num_bins: " << map.meta.sensor.num_bins << "\n"
-    << "  range_resolution_m: " << fmtDouble(map.meta.sensor.range_resolution_m) << "\n"
-    << "  range_offset_m: " << fmtDouble(map.meta.sensor.range_offset_m) << "\n"
+    << "  range_resolution_m: " << mapcodec::exactDouble(map.meta.sensor.range_resolution_m) << "\n"
+    << "  range_offset_m: " << mapcodec::exactDouble(map.meta.sensor.range_offset_m) << "\n"
     << "counts:\n"
     << "  keyframes: " << map.keyframes.size() << "\n"
     << "  points: " << map.points.size() << "\n"

@@ -30,12 +30,6 @@ OctomapExportParams::Fill parseFill(const YamlParams& yaml, const std::string& n
   return OctomapExportParams::Fill::point_rays;
 }
 
-std::string fmtDouble(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 // Writes the parts one after another into `path` and flushes it to disk.
 void writeSynced(const fs::path& path, std::initializer_list<std::string_view> parts) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
@@ -195,21 +189,21 @@ std::string layersManifestText(const MapLayersManifest& l) {
   std::ostringstream m;
   const auto& p = l.params;
   m << "layers:\n"
-    << "  grid_resolution_m: " << fmtDouble(p.grid.resolution_m) << "\n"
-    << "  grid_margin_m: " << fmtDouble(p.grid.margin_m) << "\n"
-    << "  grid_log_odds_hit: " << fmtDouble(p.grid.log_odds_hit) << "\n"
-    << "  grid_log_odds_miss: " << fmtDouble(p.grid.log_odds_miss) << "\n"
-    << "  grid_log_odds_clamp: " << fmtDouble(p.grid.log_odds_clamp) << "\n"
+    << "  grid_resolution_m: " << mapcodec::exactDouble(p.grid.resolution_m) << "\n"
+    << "  grid_margin_m: " << mapcodec::exactDouble(p.grid.margin_m) << "\n"
+    << "  grid_log_odds_hit: " << mapcodec::exactDouble(p.grid.log_odds_hit) << "\n"
+    << "  grid_log_odds_miss: " << mapcodec::exactDouble(p.grid.log_odds_miss) << "\n"
+    << "  grid_log_odds_clamp: " << mapcodec::exactDouble(p.grid.log_odds_clamp) << "\n"
     << "  octomap_fill: " << fillName(p.octomap.fill) << "\n"
-    << "  octomap_resolution_m: " << fmtDouble(p.octomap.resolution_m) << "\n"
-    << "  octomap_max_range_m: " << fmtDouble(p.octomap.max_range_m) << "\n"
+    << "  octomap_resolution_m: " << mapcodec::exactDouble(p.octomap.resolution_m) << "\n"
+    << "  octomap_max_range_m: " << mapcodec::exactDouble(p.octomap.max_range_m) << "\n"
     << "  grid_tile_cells: " << p.tiling.tile_cells << "\n"
     << "  grid_tile_above_cells: " << p.tiling.tile_above_cells << "\n"
     << "  grid_overview_max_cells: " << p.tiling.overview_max_cells << "\n"
     << "  grid_width: " << l.grid_width << "\n"
     << "  grid_height: " << l.grid_height << "\n"
-    << "  grid_origin_x: " << fmtDouble(l.grid_origin_x) << "\n"
-    << "  grid_origin_y: " << fmtDouble(l.grid_origin_y) << "\n"
+    << "  grid_origin_x: " << mapcodec::exactDouble(l.grid_origin_x) << "\n"
+    << "  grid_origin_y: " << mapcodec::exactDouble(l.grid_origin_y) << "\n"
     << "  grid_cells_sha256: " << mapcodec::yamlQuoted(l.grid_cells_sha256) << "\n";
   if (l.tiling.tiled())
     m << "  grid_overview_cells_sha256: " << mapcodec::yamlQuoted(l.grid_overview_cells_sha256) << "\n";

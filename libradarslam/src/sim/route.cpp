@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "radarslam/sim/rng.h"
+#include "world_builder.h"
 
 namespace radarslam::sim {
 
@@ -18,11 +19,6 @@ struct RawPoint {
   double dwell_s = 0;
   double half_width = 6;
 };
-
-Vec2 unit(Vec2 v) {
-  const double n = v.norm();
-  return n > 0 ? v * (1.0 / n) : Vec2{1, 0};
-}
 
 double wrapAngle(double a) { return std::remainder(a, 2 * M_PI); }
 
@@ -77,7 +73,7 @@ std::vector<RawPoint> filletedPath(const std::vector<Waypoint>& wps, const Route
       out.push_back({w.p, speed, 0.0, w.half_width});
       break;
     }
-    const Vec2 d1 = unit(w.p - wps[k - 1].p), d2 = unit(wps[k + 1].p - w.p);
+    const Vec2 d1 = detail::unit(w.p - wps[k - 1].p), d2 = detail::unit(wps[k + 1].p - w.p);
     const double phi = std::acos(std::clamp(d1.dot(d2), -1.0, 1.0));
     if (phi < 0.05) {  // straight through: maybe a stop line before the intersection
       if (w.intersection && rng.chance(p.stop_probability)) {
