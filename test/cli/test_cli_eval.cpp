@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "file_contents.h"
 #include "radarslam/io/dataset.h"
 #include "radarslam/io/trajectory_files.h"
 #include "shared_data.h"
@@ -20,17 +21,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using radarslam::test::readFileBytes;
+
 struct CliRun {
   int exit_code = -1;
   std::string out, err;
 };
-
-std::string readAll(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 /// Runs `radarslam eval <args>` with stdout and stderr captured in files next to `dir`.
 CliRun runEval(const test::TempDir& dir, const std::string& args) {
@@ -40,8 +36,8 @@ CliRun runEval(const test::TempDir& dir, const std::string& args) {
   const int status = std::system(cmd.c_str());
   CliRun r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = readAll(out);
-  r.err = readAll(err);
+  r.out = readFileBytes(out);
+  r.err = readFileBytes(err);
   return r;
 }
 
@@ -75,7 +71,7 @@ TEST(CliEval, ScoresAOnePercentScaleErrorAndWritesReportAndPlots) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("translation 1.000 %"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("1200 estimated, 1200 matched"), std::string::npos) << r.out;
-  const std::string json = readAll(dir / "out/report.json");
+  const std::string json = readFileBytes(dir / "out/report.json");
   EXPECT_NE(json.find("\"t_err_percent\": 1.0000"), std::string::npos) << json.substr(0, 2000);
   for (const char* f : {"trajectory.svg", "trajectory.png", "segment_errors.svg", "segment_errors.png"})
     EXPECT_GT(fs::file_size(dir / "plots" / f), 1000u) << f;

@@ -13,10 +13,13 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "file_contents.h"
 #include "shared_data.h"
 #include "temp_dir.h"
 
 namespace {
+
+using radarslam::test::writeFileBytes;
 
 namespace fs = std::filesystem;
 using radarslam::test::CliResult;
@@ -26,8 +29,6 @@ using radarslam::test::TempDir;
 std::size_t lineCount(const std::string& s) {
   return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
 }
-
-void writeFile(const fs::path& p, const std::string& bytes) { std::ofstream(p, std::ios::binary) << bytes; }
 
 std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
@@ -44,7 +45,7 @@ void expectOneLineError(const CliResult& r, const std::vector<std::string>& need
 CliResult runOdometryConfig(const fs::path& data, const TempDir& tmp, const std::string& text,
                             const std::string& name = "cfg.yaml") {
   const fs::path cfg = tmp / name;
-  writeFile(cfg, text);
+  writeFileBytes(cfg, text);
   return runCli(
       "odometry " + quoted(data) + " -q --count 2 -o " + quoted(tmp / "out.tum") + " --config " + quoted(cfg),
       tmp);
@@ -93,7 +94,7 @@ TEST(HostileConfigManifest, DeepManifestIsOneLineError) {
   TempDir tmp;
   const fs::path map = tmp / "map";
   fs::create_directories(map);
-  writeFile(map / "manifest.yaml", deepFlow(20000));
+  writeFileBytes(map / "manifest.yaml", deepFlow(20000));
   const CliResult r = runCli("export " + quoted(map) + " --cloud -o " + quoted(tmp / "out"), tmp);
   expectOneLineError(r, {"manifest.yaml", "nested more than 64"});
   EXPECT_FALSE(fs::exists(tmp / "out" / "cloud.ply"));
@@ -210,7 +211,7 @@ class HostileConfigSimRange : public ::testing::TestWithParam<BadValue> {};
 TEST_P(HostileConfigSimRange, SimulatorConfigIsOneLineErrorNamingFileAndKey) {
   TempDir tmp;
   const fs::path cfg = tmp / "sim.yaml";
-  writeFile(cfg, GetParam().yaml);
+  writeFileBytes(cfg, GetParam().yaml);
   const CliResult r = runCli("simulate " + quoted(tmp / "out") + " --config " + quoted(cfg), tmp);
   expectOneLineError(r, {"sim.yaml", "'" + GetParam().key + "'"});
   EXPECT_FALSE(fs::exists(tmp / "out"));
@@ -266,8 +267,9 @@ class HostileConfigTrajectory : public ::testing::TestWithParam<AbsurdX> {};
 
 TEST_P(HostileConfigTrajectory, AbsurdTrajectoryCoordinateIsOneLineErrorAsEstimateAndAsTruth) {
   TempDir tmp;
-  writeFile(tmp / "gt.tum", "1.0 0 0 0 0 0 0 1\n2.0 1 0 0 0 0 0 1\n3.0 2 0 0 0 0 0 1\n");
-  writeFile(tmp / "est.tum", "1.0 0 0 0 0 0 0 1\n2.0 " + GetParam().x + " 0 0 0 0 0 1\n3.0 2 0 0 0 0 0 1\n");
+  writeFileBytes(tmp / "gt.tum", "1.0 0 0 0 0 0 0 1\n2.0 1 0 0 0 0 0 1\n3.0 2 0 0 0 0 0 1\n");
+  writeFileBytes(tmp / "est.tum",
+                 "1.0 0 0 0 0 0 0 1\n2.0 " + GetParam().x + " 0 0 0 0 0 1\n3.0 2 0 0 0 0 0 1\n");
   for (const auto& [first, second] : {std::pair{"est.tum", "gt.tum"}, std::pair{"gt.tum", "est.tum"}}) {
     SCOPED_TRACE(std::string("eval ") + first + " " + second);
     const CliResult r = runCli(

@@ -24,10 +24,13 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "file_contents.h"
 #include "radarslam/map/map_io.h"
 #include "temp_dir.h"
 
 namespace {
+
+using radarslam::test::readFileBytes;
 
 namespace fs = std::filesystem;
 using radarslam::test::CliResult;
@@ -36,21 +39,16 @@ using Clock = std::chrono::steady_clock;
 
 std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
 /// Every entry under `root` (relative path -> type and content): compared before and after a run.
 std::map<std::string, std::string> snapshot(const fs::path& root) {
   std::map<std::string, std::string> out;
-  if (fs::is_regular_file(root)) return {{"", "file:" + slurp(root)}};
+  if (fs::is_regular_file(root)) return {{"", "file:" + readFileBytes(root)}};
   for (const auto& e : fs::recursive_directory_iterator(root)) {
     const std::string rel = fs::relative(e.path(), root).string();
     if (e.is_symlink())
       out[rel] = "link:" + fs::read_symlink(e.path()).string();
     else if (e.is_regular_file())
-      out[rel] = "file:" + slurp(e.path());
+      out[rel] = "file:" + readFileBytes(e.path());
     else
       out[rel] = "dir";
   }
@@ -189,7 +187,7 @@ TEST_F(HostileOutput, AMapReplacesARegularFileOnlyWithForce) {
   const fs::path file = tmp_ / "notes.txt";
   std::ofstream(file) << "not a map\n";
   expectOneLineError(run("map-synth " + q(small()) + " -o " + q(file)), file.string());
-  EXPECT_EQ(slurp(file), "not a map\n");
+  EXPECT_EQ(readFileBytes(file), "not a map\n");
   const CliResult r = run("map-synth " + q(small()) + " -o " + q(file) + " --force");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_GT(radarslam::loadMap(file).keyframes.size(), 0u);
@@ -221,7 +219,7 @@ TEST_F(HostileOutput, OtherCommandsRefuseOverlappingOutputs) {
 
   EXPECT_EQ(snapshot(map), map_before);
   EXPECT_EQ(snapshot(small()), data_before);
-  EXPECT_EQ(slurp(est), slurp(small() / "gt" / "poses.tum"));
+  EXPECT_EQ(readFileBytes(est), readFileBytes(small() / "gt" / "poses.tum"));
 }
 
 TEST_F(HostileOutput, SimulateReplacesOnlyAPreviousSimulation) {
@@ -291,7 +289,7 @@ TEST_F(HostileOutput, OutputThroughASymlinkReplacesItsTarget) {
   fs::create_symlink("traj.tum", traj_link);
   ASSERT_EQ(run("odometry " + q(small()) + " -o " + q(traj_link) + " -q").code, 0);
   EXPECT_TRUE(fs::is_symlink(traj_link));
-  EXPECT_EQ(lines(slurp(traj)), 7u);  // header + 6 poses
+  EXPECT_EQ(lines(readFileBytes(traj)), 7u);  // header + 6 poses
 }
 
 // --- class 8: everything is validated before the work, the swap is the last step ---------------
@@ -316,7 +314,7 @@ TEST_F(HostileOutput, BadOutputsFailBeforeTheRun) {
   check("map " + q(small()) + " -o " + q(tmp_ / "m") + " --grid-resolution 1e-6 -q", "--grid-resolution");
   EXPECT_FALSE(fs::exists(tmp_ / "m"));
   EXPECT_FALSE(fs::exists(tmp_ / "t.tum"));
-  EXPECT_EQ(slurp(file), "x\n");
+  EXPECT_EQ(readFileBytes(file), "x\n");
 }
 
 TEST_F(HostileOutput, FailedGridExportLeavesThePreviousMapWhole) {
@@ -357,7 +355,7 @@ TEST_F(HostileOutput, GroundTruthThatDoesNotCoverTheScansIsBlamedOnTheGroundTrut
   // The requested trajectory exists: exit 0, a warning naming the ground truth file.
   CliResult r = run("odometry " + q(data) + " -o " + q(traj) + " -q");
   EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(lines(slurp(traj)), 7u);  // header + 6 poses
+  EXPECT_EQ(lines(readFileBytes(traj)), 7u);  // header + 6 poses
   EXPECT_NE((r.out + r.err).find("WARN: " + gt_file), std::string::npos) << r.out << r.err;
   EXPECT_EQ(r.err.find("error"), std::string::npos) << r.err;
   // The requested report cannot be made: exit 1, the error names the ground truth file.
@@ -394,13 +392,13 @@ TEST_F(HostileOutput, InterruptedConvertLeavesNoTemporary) {
     ::kill(pid, SIGINT);
     ::waitpid(pid, &status, 0);
   }
-  const std::string err = slurp(tmp_ / "child.err");
+  const std::string err = readFileBytes(tmp_ / "child.err");
   const bool interrupted = WIFSIGNALED(status) && WTERMSIG(status) == SIGINT;
   const bool refused = WIFEXITED(status) && WEXITSTATUS(status) == 1 &&
                        err.find("not a regular file (a FIFO)") != std::string::npos;
   EXPECT_TRUE(interrupted || refused) << err;
   EXPECT_TRUE(leftovers(tmp_.path(), "x.rawlog").empty());
-  EXPECT_EQ(slurp(out), "previous\n");
+  EXPECT_EQ(readFileBytes(out), "previous\n");
 }
 
 TEST_F(HostileOutput, InterruptedExportLeavesNoPartialSetOfFiles) {

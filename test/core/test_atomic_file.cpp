@@ -3,18 +3,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "file_contents.h"
 #include "radarslam/core/atomic_file.h"
 #include "radarslam/core/errors.h"
 #include "temp_dir.h"
 
 using namespace radarslam;
 
-static std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using radarslam::test::readFileBytes;
 
 TEST(AtomicFile, FailedWriteLeavesPreviousContentAndNoTemporaries) {
   test::TempDir dir;
@@ -26,10 +22,10 @@ TEST(AtomicFile, FailedWriteLeavesPreviousContentAndNoTemporaries) {
                                      throw InputError("x", "simulated crash");
                                    }),
                InputError);
-  EXPECT_EQ(slurp(target), "old");
+  EXPECT_EQ(readFileBytes(target), "old");
   int files = 0;
   for (const auto& e : std::filesystem::directory_iterator(dir.path())) (void)e, ++files;
   EXPECT_EQ(files, 1);
   writeTextAtomically(dir / "sub/dir/new.txt", "new");
-  EXPECT_EQ(slurp(dir / "sub/dir/new.txt"), "new");
+  EXPECT_EQ(readFileBytes(dir / "sub/dir/new.txt"), "new");
 }

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "file_contents.h"
 #include "radarslam/core/atomic_file.h"
 #include "radarslam/core/errors.h"
 #include "radarslam/core/output_path.h"
@@ -18,10 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 using radarslam::InputError;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
+using radarslam::test::readFileBytes;
 
 TEST(OutputPath, NoOverlapBetweenInputAndOutput) {
   radarslam::test::TempDir tmp;
@@ -91,7 +89,7 @@ TEST(OutputPath, AtomicWriteGoesThroughASymlinkAndIntoAFifo) {
   fs::create_symlink("target.txt", tmp / "link.txt");
   radarslam::writeTextAtomically(tmp / "link.txt", "new");
   EXPECT_TRUE(fs::is_symlink(tmp / "link.txt"));
-  EXPECT_EQ(slurp(tmp / "target.txt"), "new");
+  EXPECT_EQ(readFileBytes(tmp / "target.txt"), "new");
 
   const fs::path fifo = tmp / "fifo";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);

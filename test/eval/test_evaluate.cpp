@@ -10,6 +10,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "file_contents.h"
 #include "radarslam/core/errors.h"
 #include "radarslam/eval/evaluate.h"
 #include "radarslam/eval/plots.h"
@@ -22,6 +23,8 @@ using namespace radarslam::eval;
 using mrpt::math::TPose2D;
 
 namespace {
+
+using radarslam::test::readFileBytes;
 /// Constant velocity 10 m/s along a 30 deg line, ground truth at 10 Hz from t = 0 to 100 s.
 TPose2D lineAt(StampNs t) {
   const double s = 10.0 * toSeconds(t), a = std::numbers::pi / 6;
@@ -38,12 +41,6 @@ Trajectory lineEstimate() {
   for (StampNs t = -kNsPerSec + 37'000'000; t <= 101'500'000'000LL; t += 250'000'000)
     est.push_back({t, lineAt(t)});
   return est;
-}
-std::string readAll(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 }  // namespace
 
@@ -110,7 +107,7 @@ TEST(Report, JsonCarriesTheMetricsAndNullForMissingOnes) {
   const EvalReport r = evaluate(test::scaled(gt, 1.02), gt, {}, "est \"quoted\".txt", "gt.txt");
   test::TempDir dir;
   writeJsonReport(dir / "report.json", r);
-  const auto doc = mrpt::containers::yaml::FromText(readAll(dir / "report.json"));  // JSON is YAML
+  const auto doc = mrpt::containers::yaml::FromText(readFileBytes(dir / "report.json"));  // JSON is YAML
   EXPECT_EQ(doc["estimate"]["label"].as<std::string>(), "est \"quoted\".txt");
   EXPECT_EQ(doc["association"]["matched"].as<int>(), 1200);
   EXPECT_NEAR(doc["kitti"]["t_err_percent"].as<double>(), r.kitti.t_err_percent, 1e-8);
@@ -149,12 +146,12 @@ TEST(Plots, WritesSvgAndPngThatShowTheTrajectories) {
   ASSERT_EQ(files.size(), 4u);
   for (const auto& f : files) ASSERT_TRUE(std::filesystem::exists(f)) << f;
 
-  const std::string svg = readAll(dir / "plots/trajectory.svg");
+  const std::string svg = readFileBytes(dir / "plots/trajectory.svg");
   EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
   EXPECT_NE(svg.find("<polyline"), std::string::npos);
   EXPECT_NE(svg.find("x [m]"), std::string::npos);
   EXPECT_NE(svg.find("est.txt"), std::string::npos);
-  EXPECT_NE(readAll(dir / "plots/segment_errors.svg").find("segment length [m]"), std::string::npos);
+  EXPECT_NE(readFileBytes(dir / "plots/segment_errors.svg").find("segment length [m]"), std::string::npos);
 
   const cv::Mat img = cv::imread((dir / "plots/trajectory.png").string(), cv::IMREAD_COLOR);
   ASSERT_FALSE(img.empty());

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <numbers>
 
+#include "file_contents.h"
 #include "radarslam/core/errors.h"
 #include "radarslam/io/trajectory_files.h"
 #include "synthetic.h"
@@ -15,7 +16,8 @@ using namespace radarslam;
 using mrpt::math::TPose2D;
 
 namespace {
-void writeText(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+using radarslam::test::writeFileBytes;
 
 /// Runs `f`, expects an InputError and returns it.
 template <typename F>
@@ -85,10 +87,10 @@ TEST(TrajectoryFiles, KittiRoundTripUsesTheStampsCompanion) {
 
 TEST(TrajectoryFiles, KittiWithoutStampsUsesTheIndexOrAGivenStampFile) {
   test::TempDir dir;
-  writeText(dir / "poses.txt",
-            "1 0 0 0 0 1 0 0 0 0 1 0\n"
-            "0 -1 0 2.5 1 0 0 1 0 0 1 0\n"
-            "1.000000e+00 0.000000e+00 0.000000e+00 5.0e+00 0 1 0 2 0 0 1 0.3\n");
+  writeFileBytes(dir / "poses.txt",
+                 "1 0 0 0 0 1 0 0 0 0 1 0\n"
+                 "0 -1 0 2.5 1 0 0 1 0 0 1 0\n"
+                 "1.000000e+00 0.000000e+00 0.000000e+00 5.0e+00 0 1 0 2 0 0 1 0.3\n");
   const Trajectory t = readKittiTrajectory(dir / "poses.txt");
   ASSERT_EQ(t.size(), 3u);
   EXPECT_EQ(t[2].stamp, 2 * kNsPerSec);
@@ -97,14 +99,14 @@ TEST(TrajectoryFiles, KittiWithoutStampsUsesTheIndexOrAGivenStampFile) {
   EXPECT_NEAR(t[1].pose.phi, std::numbers::pi / 2, 1e-12);
   EXPECT_DOUBLE_EQ(t[2].pose.x, 5.0);
 
-  writeText(dir / "times.txt", "0.000000e+00\n1.036000e-01\n2.071000e-01\n");
+  writeFileBytes(dir / "times.txt", "0.000000e+00\n1.036000e-01\n2.071000e-01\n");
   TrajectoryReadOptions options;
   options.stamps_file = dir / "times.txt";
   const Trajectory s = readTrajectoryFile(dir / "poses.txt", options);
   EXPECT_EQ(s[1].stamp, 103600000);
   EXPECT_EQ(s[2].stamp, 207100000);
 
-  writeText(dir / "short.txt", "0\n");
+  writeFileBytes(dir / "short.txt", "0\n");
   options.stamps_file = dir / "short.txt";
   const InputError e = expectInputError([&] { readTrajectoryFile(dir / "poses.txt", options); });
   EXPECT_EQ(e.where(), (dir / "poses.txt").string() + ":2");
@@ -112,10 +114,10 @@ TEST(TrajectoryFiles, KittiWithoutStampsUsesTheIndexOrAGivenStampFile) {
 
 TEST(TrajectoryFiles, ReadsStampedKittiAndSkipsComments) {
   test::TempDir dir;
-  writeText(dir / "boreas.txt",
-            "# pyboreas style: stamp then 3x4\n\n"
-            "1632182400000000 1 0 0 10 0 1 0 20 0 0 1 0\n"
-            "1632182400250000 1 0 0 11 0 1 0 20 0 0 1 0\n");
+  writeFileBytes(dir / "boreas.txt",
+                 "# pyboreas style: stamp then 3x4\n\n"
+                 "1632182400000000 1 0 0 10 0 1 0 20 0 0 1 0\n"
+                 "1632182400250000 1 0 0 11 0 1 0 20 0 0 1 0\n");
   const Trajectory t = readTrajectoryFile(dir / "boreas.txt");
   ASSERT_EQ(t.size(), 2u);
   EXPECT_EQ(t[1].stamp, 1632182400250000000LL);
@@ -126,8 +128,8 @@ TEST(TrajectoryFiles, ReadsStampedKittiAndSkipsComments) {
 TEST(TrajectoryFiles, TumYawComesFromTheQuaternion) {
   test::TempDir dir;
   const double yaw = 2.5;
-  writeText(dir / "q.txt", "10.5 1 2 3 0 0 " + std::to_string(std::sin(yaw / 2)) + " " +
-                               std::to_string(std::cos(yaw / 2)) + "\n");
+  writeFileBytes(dir / "q.txt", "10.5 1 2 3 0 0 " + std::to_string(std::sin(yaw / 2)) + " " +
+                                    std::to_string(std::cos(yaw / 2)) + "\n");
   const Trajectory t = readTumTrajectory(dir / "q.txt");
   ASSERT_EQ(t.size(), 1u);
   EXPECT_EQ(t[0].stamp, 10'500'000'000LL);
@@ -153,17 +155,17 @@ TEST(TrajectoryFiles, BadLinesNameTheFileAndLine) {
       {good + "2.0e 1 0 0 0 0 0 1\n", ":2", "timestamp"},
   };
   for (const auto& c : cases) {
-    writeText(f, c.text);
+    writeFileBytes(f, c.text);
     const InputError e = expectInputError([&] { readTrajectoryFile(f, {TrajectoryFormat::Tum, {}}); });
     EXPECT_EQ(e.where(), f.string() + c.line) << c.text;
     EXPECT_NE(e.problem().find(c.words), std::string::npos) << e.what();
   }
-  writeText(f, "1 0 0 0 0 1 0 0 0 0 1 0\n2 0 0 0 0 1 0 0 0 0 1 0\n");
+  writeFileBytes(f, "1 0 0 0 0 1 0 0 0 0 1 0\n2 0 0 0 0 1 0 0 0 0 1 0\n");
   const InputError not_rotation = expectInputError([&] { readKittiTrajectory(f); });
   EXPECT_EQ(not_rotation.where(), f.string() + ":2");
-  writeText(f, "1 2 3\n");
+  writeFileBytes(f, "1 2 3\n");
   EXPECT_EQ(expectInputError([&] { readTrajectoryFile(f); }).where(), f.string() + ":1");
-  writeText(f, "# nothing\n");
+  writeFileBytes(f, "# nothing\n");
   EXPECT_EQ(expectInputError([&] { readTrajectoryFile(f); }).where(), f.string());
   EXPECT_NE(std::string(expectInputError([&] { readTrajectoryFile(dir / "missing.txt"); }).what())
                 .find("not found"),

@@ -10,7 +10,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
 
+#include "file_contents.h"
 #include "io_test_util.h"
+#include "png_bytes.h"
 #include "radarslam/io/dataset.h"
 #include "temp_dir.h"
 
@@ -27,9 +29,7 @@ std::uint32_t pngCrc(const std::uint8_t* p, std::size_t n) {
   return crc ^ 0xFFFFFFFFu;
 }
 
-std::uint32_t be32(const std::uint8_t* p) {
-  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
-}
+using radarslam::io_detail::be32;
 
 // Overwrites `n` bytes in the middle of the first IDAT chunk's data and fixes that chunk's CRC.
 void corruptImageData(std::vector<std::uint8_t>& png, std::size_t n) {
@@ -47,16 +47,6 @@ void corruptImageData(std::vector<std::uint8_t>& png, std::size_t n) {
     pos += 12 + len;
   }
   FAIL() << "no IDAT chunk";
-}
-
-std::vector<std::uint8_t> readAll(const std::filesystem::path& f) {
-  std::ifstream in(f, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
-void writeAll(const std::filesystem::path& f, const std::vector<std::uint8_t>& bytes) {
-  std::ofstream out(f, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
 }
 
 std::filesystem::path radiateScan(const test::TempDir& tmp) {
@@ -87,9 +77,10 @@ TEST(PngDecode, CorruptImageDataIsOneErrorAndNoLibpngOutput) {
   test::TempDir tmp;
   const auto png = radiateScan(tmp);
   test::writeTransposedPng(png, 64, 256);
-  auto bytes = readAll(png);
+  const std::string file = test::readFileBytes(png);
+  std::vector<std::uint8_t> bytes(file.begin(), file.end());
   corruptImageData(bytes, 24);
-  writeAll(png, bytes);
+  test::writeFileBytes(png, std::string(bytes.begin(), bytes.end()));
   ::testing::internal::CaptureStderr();
   expectInputError([&] { (void)readScanFile(png); }, "000001.png", "PNG could not be decoded");
   EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");

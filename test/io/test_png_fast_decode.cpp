@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "file_contents.h"
 #include "png_fast_decode.h"
 #include "shared_data.h"
 
@@ -95,11 +96,6 @@ bool sameImage(const cv::Mat& a, const cv::Mat& b) {
   return a.size() == b.size() && a.type() == b.type() && cv::countNonZero(a != b) == 0;
 }
 
-Bytes readAll(const std::filesystem::path& f) {
-  std::ifstream in(f, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
 }  // namespace
 
 TEST(PngFastDecode, EveryFilterDecodesAsLibpngDoes) {
@@ -122,7 +118,8 @@ TEST(PngFastDecode, EveryRealScanDecodesAsLibpngDoes) {
   std::size_t n = 0;
   for (const auto& e : std::filesystem::recursive_directory_iterator(real)) {
     if (e.path().extension() != ".png") continue;
-    const Bytes png = readAll(e.path());
+    const std::string file = radarslam::test::readFileBytes(e.path());
+    const Bytes png(file.begin(), file.end());
     const cv::Mat reference = cv::imdecode(png, cv::IMREAD_UNCHANGED);
     ASSERT_EQ(reference.type(), CV_8UC1) << e.path();
     cv::Mat fast;

@@ -20,6 +20,7 @@
 #include <sstream>
 #include <string>
 
+#include "file_contents.h"
 #include "radarslam/core/errors.h"
 #include "radarslam/map/map_exports.h"
 #include "synthetic_map.h"
@@ -30,10 +31,7 @@ using namespace radarslam;
 
 namespace {
 
-std::string readAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
+using radarslam::test::readFileBytes;
 
 struct Xyzi {
   float x, y, z, i;
@@ -60,7 +58,7 @@ std::vector<Xyzi> parseBinaryBody(const std::string& bytes, std::size_t body, st
 }
 
 std::vector<Xyzi> parsePly(const fs::path& path) {
-  const std::string bytes = readAll(path);
+  const std::string bytes = readFileBytes(path);
   std::istringstream in(bytes);
   std::string line;
   std::size_t n = 0;
@@ -89,7 +87,7 @@ std::vector<Xyzi> parsePly(const fs::path& path) {
 }
 
 std::vector<Xyzi> parsePcd(const fs::path& path) {
-  const std::string bytes = readAll(path);
+  const std::string bytes = readFileBytes(path);
   std::istringstream in(bytes);
   std::string line;
   std::size_t n = 0, width = 0;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "file_contents.h"
 #include "radarslam/core/errors.h"
 #include "radarslam/map/map_io.h"
 #include "radarslam/map/sha256.h"
@@ -22,14 +23,8 @@ using radarslam::saveMap;
 
 namespace {
 
-std::string readAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-void writeAll(const fs::path& p, const std::string& s) {
-  std::ofstream out(p, std::ios::binary | std::ios::trunc);
-  out << s;
-}
+using radarslam::test::readFileBytes;
+using radarslam::test::writeFileBytes;
 
 // Runs loadMap(dir) expecting an InputError whose message contains each of `parts`.
 void expectLoadError(const fs::path& dir, std::initializer_list<std::string> parts) {
@@ -97,7 +92,7 @@ TEST(MapIo, SaveFillsCreationTime) {
   saveMap(map, tmp / "m");
   const auto back = loadMap(tmp / "m");
   EXPECT_GT(back.meta.created_ns, 1'600'000'000'000'000'000LL);  // after 2020
-  EXPECT_NE(readAll(tmp / "m" / "manifest.yaml").find("created_utc: \"20"), std::string::npos);
+  EXPECT_NE(readFileBytes(tmp / "m" / "manifest.yaml").find("created_utc: \"20"), std::string::npos);
 }
 
 TEST(MapIo, CorruptByteIsAChecksumError) {
@@ -105,12 +100,12 @@ TEST(MapIo, CorruptByteIsAChecksumError) {
   saveMap(radarslam::test::syntheticMap(), tmp / "m");
   for (const char* file : {"keyframes.bin", "points.bin", "graph.bin", "parameters.yaml"}) {
     const fs::path p = tmp / "m" / file;
-    const std::string good = readAll(p);
+    const std::string good = readFileBytes(p);
     std::string bad = good;
     bad[bad.size() / 2] ^= 0x01;
-    writeAll(p, bad);
+    writeFileBytes(p, bad);
     expectLoadError(tmp / "m", {file, "checksum mismatch"});
-    writeAll(p, good);
+    writeFileBytes(p, good);
   }
   EXPECT_NO_THROW(loadMap(tmp / "m"));
 }
@@ -119,10 +114,10 @@ TEST(MapIo, TruncatedFileIsAnError) {
   radarslam::test::TempDir tmp;
   saveMap(radarslam::test::syntheticMap(), tmp / "m");
   const fs::path p = tmp / "m" / "keyframes.bin";
-  const std::string good = readAll(p);
-  writeAll(p, good.substr(0, good.size() - 100));
+  const std::string good = readFileBytes(p);
+  writeFileBytes(p, good.substr(0, good.size() - 100));
   expectLoadError(tmp / "m", {"keyframes.bin", "truncated"});
-  writeAll(p, good);
+  writeFileBytes(p, good);
   fs::remove(tmp / "m" / "graph.bin");
   expectLoadError(tmp / "m", {"graph.bin", "missing"});
 }
@@ -131,13 +126,13 @@ TEST(MapIo, NewerFormatVersionIsRejected) {
   radarslam::test::TempDir tmp;
   saveMap(radarslam::test::syntheticMap(2, 10), tmp / "m");
   const fs::path manifest = tmp / "m" / "manifest.yaml";
-  std::string text = readAll(manifest);
+  std::string text = readFileBytes(manifest);
   const std::string current = "format_version: " + std::to_string(radarslam::kMapFormatVersion) + "\n";
   const auto pos = text.find(current);
   ASSERT_NE(pos, std::string::npos);
   const std::string newer = std::to_string(radarslam::kMapFormatVersion + 1);
   text.replace(pos, current.size(), "format_version: " + newer + "\n");
-  writeAll(manifest, text);
+  writeFileBytes(manifest, text);
   expectLoadError(tmp / "m", {"manifest.yaml", "version " + newer + " is newer"});
 }
 
@@ -146,18 +141,18 @@ TEST(MapIo, NewerBinaryFileVersionIsRejected) {
   radarslam::test::TempDir tmp;
   saveMap(radarslam::test::syntheticMap(2, 10), tmp / "m");
   const fs::path kf = tmp / "m" / "keyframes.bin";
-  const std::string old_bytes = readAll(kf);
+  const std::string old_bytes = readFileBytes(kf);
   std::string bytes = old_bytes;
   ASSERT_EQ(bytes.substr(0, 8), "RSLMKEYF");
   bytes[8] = static_cast<char>(radarslam::kMapFormatVersion + 1);  // u32 version, little-endian, offset 8
-  writeAll(kf, bytes);
+  writeFileBytes(kf, bytes);
   const fs::path manifest = tmp / "m" / "manifest.yaml";
-  std::string text = readAll(manifest);
+  std::string text = readFileBytes(manifest);
   const std::string old_sha = radarslam::sha256Hex(old_bytes);
   const auto pos = text.find(old_sha);
   ASSERT_NE(pos, std::string::npos);
   text.replace(pos, old_sha.size(), radarslam::sha256Hex(bytes));
-  writeAll(manifest, text);
+  writeFileBytes(manifest, text);
   expectLoadError(
       tmp / "m",
       {"keyframes.bin", "format version " + std::to_string(radarslam::kMapFormatVersion + 1) + " is newer"});
@@ -196,7 +191,7 @@ TEST(MapIo, StaleTempAndBackupDirectories) {
   saveMap(a, dir);
   // A crash while writing the temporary: a half-written temp dir next to the complete old map.
   fs::create_directories(radarslam::mapTempDir(dir));
-  writeAll(radarslam::mapTempDir(dir) / "keyframes.bin", "garbage");
+  writeFileBytes(radarslam::mapTempDir(dir) / "keyframes.bin", "garbage");
   EXPECT_TRUE(loadMap(dir) == a);
   // A crash between "old -> backup" and "new -> place": only the backup is complete.
   fs::rename(dir, radarslam::mapBackupDir(dir));
@@ -205,7 +200,7 @@ TEST(MapIo, StaleTempAndBackupDirectories) {
   EXPECT_FALSE(fs::exists(radarslam::mapBackupDir(dir)));
   // A crash after the new map was in place but before the backup was deleted.
   fs::create_directories(radarslam::mapBackupDir(dir));
-  writeAll(radarslam::mapBackupDir(dir) / "manifest.yaml", "format_version: 1\n");
+  writeFileBytes(radarslam::mapBackupDir(dir) / "manifest.yaml", "format_version: 1\n");
   EXPECT_TRUE(loadMap(dir) == a);
   // The next save cleans both up.
   saveMap(b, dir);

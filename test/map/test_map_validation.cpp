@@ -11,6 +11,7 @@
 #include <limits>
 #include <string>
 
+#include "file_contents.h"
 #include "radarslam/core/errors.h"
 #include "radarslam/map/map_io.h"
 #include "radarslam/map/sha256.h"
@@ -25,17 +26,11 @@ using radarslam::saveMap;
 
 namespace {
 
+using radarslam::test::readFileBytes;
+using radarslam::test::writeFileBytes;
+
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-std::string readAll(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-void writeAll(const fs::path& p, const std::string& s) {
-  std::ofstream out(p, std::ios::binary | std::ios::trunc);
-  out << s;
-}
 
 // loadMap(dir) must throw one line containing `file` and `problem`.
 void expectLoadError(const fs::path& dir, const std::string& file, const std::string& problem) {
@@ -62,15 +57,15 @@ void expectCorruptionRejected(const std::function<void(KeyframeMap&)>& corrupt, 
 
 // Rewrites `bytes:` and `sha256:` of `file` in the manifest to match its current content.
 void rewriteChecksum(const fs::path& dir, const std::string& file) {
-  const std::string bytes = readAll(dir / file);
-  std::string m = readAll(dir / "manifest.yaml");
+  const std::string bytes = readFileBytes(dir / file);
+  std::string m = readFileBytes(dir / "manifest.yaml");
   const auto at = m.find("name: \"" + file + "\"");
   ASSERT_NE(at, std::string::npos);
   const auto b = m.find("bytes: ", at) + 7;
   m.replace(b, m.find('\n', b) - b, std::to_string(bytes.size()));
   const auto s = m.find("sha256: \"", at) + 9;
   m.replace(s, 64, radarslam::sha256Hex(bytes));
-  writeAll(dir / "manifest.yaml", m);
+  writeFileBytes(dir / "manifest.yaml", m);
 }
 
 }  // namespace
@@ -138,9 +133,9 @@ TEST(MapValidation, ImplausibleSensorGeometryIsRejected) {
   // A negative count in the manifest text (the manifest has no checksum of its own).
   radarslam::test::TempDir tmp;
   saveMap(radarslam::test::syntheticMap(2, 10), tmp / "m");
-  std::string m = readAll(tmp / "m" / "manifest.yaml");
+  std::string m = readFileBytes(tmp / "m" / "manifest.yaml");
   m.replace(m.find("num_azimuths: 400"), 17, "num_azimuths: -400");
-  writeAll(tmp / "m" / "manifest.yaml", m);
+  writeFileBytes(tmp / "m" / "manifest.yaml", m);
   expectLoadError(tmp / "m", "manifest.yaml", "num_azimuths");
 }
 
@@ -148,10 +143,10 @@ TEST(MapValidation, PatchedBytesWithRewrittenChecksumsAreRejected) {
   radarslam::test::TempDir tmp;
   saveMap(radarslam::test::syntheticMap(4, 20), tmp / "m");
   // keyframes.bin: 24-byte header, then id (u64), stamp (i64), pose x (f64) of the first keyframe.
-  std::string kf = readAll(tmp / "m" / "keyframes.bin");
+  std::string kf = readFileBytes(tmp / "m" / "keyframes.bin");
   const double nan = kNaN;
   kf.replace(24 + 16, 8, reinterpret_cast<const char*>(&nan), 8);
-  writeAll(tmp / "m" / "keyframes.bin", kf);
+  writeFileBytes(tmp / "m" / "keyframes.bin", kf);
   rewriteChecksum(tmp / "m", "keyframes.bin");
   expectLoadError(tmp / "m", "keyframes.bin", "keyframe 10: pose x is NaN");
 }
@@ -170,7 +165,7 @@ TEST(MapValidation, ManifestStringsRoundTripWhateverBytesTheyHold) {
     map.meta.source_dataset = s;
     map.meta.software_version = s + "v";
     saveMap(map, tmp / "m");
-    const std::string manifest = readAll(tmp / "m" / "manifest.yaml");
+    const std::string manifest = readFileBytes(tmp / "m" / "manifest.yaml");
     for (unsigned char c : manifest) EXPECT_TRUE(c == '\n' || (c >= 0x20 && c < 0x7f)) << int(c);
     const KeyframeMap back = loadMap(tmp / "m");
     EXPECT_EQ(back.meta.source_dataset, s);
@@ -184,12 +179,12 @@ TEST(MapValidation, ABrokenHexTwinIsAnError) {
   KeyframeMap map = radarslam::test::syntheticMap(2, 10);
   map.meta.source_dataset = "\xff";
   saveMap(map, tmp / "m");
-  std::string m = readAll(tmp / "m" / "manifest.yaml");
+  std::string m = readFileBytes(tmp / "m" / "manifest.yaml");
   const std::string twin = "source_dataset_hex: \"ff\"";
   const auto at = m.find(twin);
   ASSERT_NE(at, std::string::npos) << m;
   m.replace(at, twin.size(), "source_dataset_hex: \"f\"");
-  writeAll(tmp / "m" / "manifest.yaml", m);
+  writeFileBytes(tmp / "m" / "manifest.yaml", m);
   expectLoadError(tmp / "m", "manifest.yaml", "source_dataset_hex");
 }
 
@@ -202,14 +197,14 @@ TEST(MapValidation, WhetherTheCloudsAreMotionCompensatedRoundTrips) {
     EXPECT_EQ(loadMap(tmp / "m").meta.clouds_motion_compensated, compensated);
   }
   // A manifest without the key (written before it existed, by radarslam map): compensated.
-  std::string m = readAll(tmp / "m" / "manifest.yaml");
+  std::string m = readFileBytes(tmp / "m" / "manifest.yaml");
   const std::string line = "clouds_motion_compensated: true\n";
   const auto at = m.find(line);
   ASSERT_NE(at, std::string::npos) << m;
-  writeAll(tmp / "m" / "manifest.yaml", std::string(m).erase(at, line.size()));
+  writeFileBytes(tmp / "m" / "manifest.yaml", std::string(m).erase(at, line.size()));
   EXPECT_TRUE(loadMap(tmp / "m").meta.clouds_motion_compensated);
-  writeAll(tmp / "m" / "manifest.yaml",
-           std::string(m).replace(at, line.size(), "clouds_motion_compensated: maybe\n"));
+  writeFileBytes(tmp / "m" / "manifest.yaml",
+                 std::string(m).replace(at, line.size(), "clouds_motion_compensated: maybe\n"));
   expectLoadError(tmp / "m", "manifest.yaml", "clouds_motion_compensated");
 }
 

@@ -9,22 +9,18 @@
 #include <string>
 #include <vector>
 
+#include "file_contents.h"
 #include "simulated_dataset.h"
 #include "temp_dir.h"
 
 namespace radarslam {
 namespace {
 
+using radarslam::test::readFileBytes;
+
 int run(const std::string& args, const std::filesystem::path& log) {
   const std::string cmd = std::string(RADARSLAM_CLI) + " " + args + " > '" + log.string() + "' 2>&1";
   return std::system(cmd.c_str());
-}
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
 }
 
 /// Data rows (not starting with '#') of a whitespace-separated file.
@@ -52,14 +48,14 @@ TEST(LocalizeCli, SecondTraversalOfSimulatedWorld) {
   const auto d = tmp.path();
   const std::filesystem::path t1 = traversal(1), t2 = traversal(2);
   ASSERT_EQ(run("map-synth '" + t1.string() + "' -o '" + (d / "map").string() + "'", d / "synth.log"), 0)
-      << slurp(d / "synth.log");
+      << readFileBytes(d / "synth.log");
   const auto poses = d / "poses.tum";
   ASSERT_EQ(run("localize '" + (d / "map").string() + "' '" + t2.string() + "' -o '" + poses.string() +
                     "' --eval-dir '" + (d / "eval").string() + "' -q",
                 d / "loc.log"),
             0)
-      << slurp(d / "loc.log");
-  const std::string log = slurp(d / "loc.log");
+      << readFileBytes(d / "loc.log");
+  const std::string log = readFileBytes(d / "loc.log");
 
   // Per-scan side file: one row per scan, status and localised flag consistent.
   const auto side = rows(poses.string() + ".csv");
@@ -85,11 +81,11 @@ TEST(LocalizeCli, SecondTraversalOfSimulatedWorld) {
                     (d / "eval" / "truth_map.tum").string() + "' --json '" + (d / "loc.json").string() + "'",
                 d / "evalloc.log"),
             0)
-      << slurp(d / "evalloc.log");
-  const std::string json = slurp(d / "loc.json");
+      << readFileBytes(d / "evalloc.log");
+  const std::string json = readFileBytes(d / "loc.json");
   EXPECT_NE(json.find("\"nees_mean\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"trusted_far_off\": 0,"), std::string::npos) << json;
-  EXPECT_NE(slurp(d / "evalloc.log").find("RMSE"), std::string::npos);
+  EXPECT_NE(readFileBytes(d / "evalloc.log").find("RMSE"), std::string::npos);
   // The first fix comes within the first 3 scans.
   EXPECT_TRUE(side[0][3] == "1" || side[1][3] == "1" || side[2][3] == "1") << log;
 
@@ -130,13 +126,14 @@ TEST(LocalizeCli, InASlamMapTheCompensatedCloudsAreUsedAsStored) {
   const std::filesystem::path t1 = traversal(1), t2 = traversal(2);
   ASSERT_EQ(run("map '" + t1.string() + "' -o '" + (d / "map").string() + "' --threads 1 -q", d / "map.log"),
             0)
-      << slurp(d / "map.log");
-  ASSERT_NE(slurp(d / "map" / "manifest.yaml").find("clouds_motion_compensated: true"), std::string::npos);
+      << readFileBytes(d / "map.log");
+  ASSERT_NE(readFileBytes(d / "map" / "manifest.yaml").find("clouds_motion_compensated: true"),
+            std::string::npos);
   ASSERT_EQ(run("localize '" + (d / "map").string() + "' '" + t2.string() + "' -o '" +
                     (d / "p.tum").string() + "' --eval-dir '" + (d / "eval").string() + "' -q",
                 d / "loc.log"),
             0)
-      << slurp(d / "loc.log");
+      << readFileBytes(d / "loc.log");
   // errors.csv: stamp scan status ... position and heading error relative to the nearest map keyframe.
   std::size_t good = 0;
   for (const auto& r : rows(d / "eval" / "errors.csv")) {
@@ -144,13 +141,13 @@ TEST(LocalizeCli, InASlamMapTheCompensatedCloudsAreUsedAsStored) {
     good += r[2] == "tracking" && std::stod(r[9]) <= 0.3 && std::stod(r[10]) <= 0.5;
   }
   // Issue 14's target is 95 % of the scans; measured 125 of 130 (double compensation: 84).
-  EXPECT_GE(good, kScans * 9 / 10) << slurp(d / "loc.log");
+  EXPECT_GE(good, kScans * 9 / 10) << readFileBytes(d / "loc.log");
   // The summary says which model errors the covariance got: a SLAM map's.
   EXPECT_NE(
-      slurp(d / "loc.log")
+      readFileBytes(d / "loc.log")
           .find("model error    0.035 m, 0.140 deg added to each registration's covariance (a SLAM map"),
       std::string::npos)
-      << slurp(d / "loc.log");
+      << readFileBytes(d / "loc.log");
 }
 
 TEST(LocalizeCli, MissingMapIsOneLineError) {
@@ -160,7 +157,7 @@ TEST(LocalizeCli, MissingMapIsOneLineError) {
                     (d / "p.tum").string() + "'",
                 d / "err.log"),
             0);
-  const std::string err = slurp(d / "err.log");
+  const std::string err = readFileBytes(d / "err.log");
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
 }
 

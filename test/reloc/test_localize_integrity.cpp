@@ -15,12 +15,15 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "file_contents.h"
 #include "radarslam/map/map_io.h"
 #include "simulated_dataset.h"
 #include "temp_dir.h"
 
 namespace radarslam {
 namespace {
+
+using radarslam::test::readFileBytes;
 
 namespace fs = std::filesystem;
 
@@ -30,13 +33,6 @@ namespace fs = std::filesystem;
   if (r.code == 0) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << "radarslam " << args << ": exit " << r.code << "\n"
                                        << r.out << r.err;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
 }
 
 std::vector<std::vector<std::string>> rows(const fs::path& p) {
@@ -142,7 +138,7 @@ TEST_F(LocalizeIntegrity, KidnappedVehicleIsNeverTrustedWhileWrong) {
   const fs::path config = d / "self_trusting.yaml";
   {
     std::ofstream c(config);
-    c << slurp(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml")
+    c << readFileBytes(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml")
       << "localization:\n  map_sweep_period_s: 0.25\n  integrity:\n    enabled: "
       << (std::getenv("RADARSLAM_TEST_NO_INTEGRITY") ? "false" : "true")
       << "\n  tracker:\n    min_fit_score: 0.1\n    min_inliers: 20\n    max_rms_m: 1.0\n"
@@ -170,7 +166,7 @@ void LocalizeIntegrity::driveOutOfTheMapAndBack(const std::string& name, bool ad
   }
   const fs::path config = d / (name + ".yaml");
   {
-    std::string loc = slurp(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "localization.yaml");
+    std::string loc = readFileBytes(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "localization.yaml");
     auto set = [&loc](const std::string& key, bool value) {
       const auto at = loc.find(key + ": ");
       ASSERT_NE(at, std::string::npos) << key;
@@ -180,7 +176,7 @@ void LocalizeIntegrity::driveOutOfTheMapAndBack(const std::string& name, bool ad
     set("odometry_adaptive_radius", adaptive_odometry);
     set("gate_fixes_with_odometry", std::getenv("RADARSLAM_TEST_NO_GATE") == nullptr);
     std::ofstream c(config);
-    c << slurp(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml") << loc;
+    c << readFileBytes(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml") << loc;
   }
   std::vector<std::vector<std::string>> errors, side;
   localize(d / "map_gap", *t2_, name, kScans, errors, side, config.string());
@@ -240,13 +236,13 @@ TEST_F(LocalizeIntegrity, MapWithTheSameStreetTwiceIsTrackedOnOneCopyAndReported
 
   const fs::path config = d / "twice.yaml";
   {
-    std::string loc = slurp(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "localization.yaml");
+    std::string loc = readFileBytes(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "localization.yaml");
     if (std::getenv("RADARSLAM_TEST_NO_COPIES")) {
       const auto at = loc.find("max_path_m: ");
       ASSERT_NE(at, std::string::npos);
       loc.replace(at, loc.find('\n', at) - at, "max_path_m: 0");
     }
-    std::ofstream(config) << slurp(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml") << loc;
+    std::ofstream(config) << readFileBytes(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml") << loc;
   }
   std::vector<std::vector<std::string>> errors, side;
   localize(d / "map_twice", *t2_, "twice", kScans, errors, side, config.string());
@@ -276,7 +272,7 @@ TEST_F(LocalizeIntegrity, AFixInAFlatPlaceIsReportedDegradedAndTrackedOn) {
   }
   const fs::path config = d / "flat.yaml";
   {
-    std::string loc = slurp(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "localization.yaml");
+    std::string loc = readFileBytes(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "localization.yaml");
     auto set = [&loc](const std::string& key, const std::string& value) {
       const auto at = loc.find(key + ": ");
       ASSERT_NE(at, std::string::npos) << key;
@@ -284,7 +280,7 @@ TEST_F(LocalizeIntegrity, AFixInAFlatPlaceIsReportedDegradedAndTrackedOn) {
     };
     set("profile_shift_m", "0.01");
     set("degraded_fixes", std::getenv("RADARSLAM_TEST_NO_DEGRADED_FIXES") ? "false" : "true");
-    std::ofstream(config) << slurp(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml") << loc;
+    std::ofstream(config) << readFileBytes(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml") << loc;
   }
   std::vector<std::vector<std::string>> errors, side;
   localize(d / "map", *t2_, "flat", kScans, errors, side, config.string());

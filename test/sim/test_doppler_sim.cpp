@@ -14,12 +14,12 @@ using namespace radarslam;
 using namespace radarslam::sim;
 
 namespace {
-constexpr StampNs kStart = 1'600'000'000LL * kNsPerSec;
+constexpr StampNs kDriveStart = 1'600'000'000LL * kNsPerSec;
 constexpr double kSpeed = 10.0;
 
 Route straightRoute() {  // along +x at kSpeed
   Route r;
-  r.start_stamp = kStart;
+  r.start_stamp = kDriveStart;
   for (double s = 0; s <= 400; s += 0.25) r.samples.push_back({s, s / kSpeed, s / kSpeed, s, 0, 0, kSpeed});
   return r;
 }
@@ -49,7 +49,7 @@ CObservationRadarScan render(double beta, const std::string& chirp) {
   g.chirp = chirp;
   RadarRenderer renderer(w, route, g, {}, weatherPreset("clear"), 1);
   CObservationRadarScan s;
-  renderer.render(kStart + kNsPerSec, 0, s);
+  renderer.render(kDriveStart + kNsPerSec, 0, s);
   return s;
 }
 }  // namespace
