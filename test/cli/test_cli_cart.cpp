@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "file_contents.h"
 #include "shared_data.h"
 #include "temp_dir.h"
 
@@ -26,8 +27,7 @@ Result runCli(const std::string& args, const radarslam::test::TempDir& tmp) {
   const int status = std::system(cmd.c_str());
   Result r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err_file);
-  r.err.assign(std::istreambuf_iterator<char>(in), {});
+  r.err = radarslam::test::readFileBytes(err_file);
   return r;
 }
 

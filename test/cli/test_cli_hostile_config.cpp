@@ -24,13 +24,12 @@ using radarslam::test::writeFileBytes;
 namespace fs = std::filesystem;
 using radarslam::test::CliResult;
 using radarslam::test::runCli;
+using radarslam::test::shellQuoted;
 using radarslam::test::TempDir;
 
 std::size_t lineCount(const std::string& s) {
   return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
 }
-
-std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
 /// Exit 1, one line "radarslam: error: ...", naming every one of `needles`.
 void expectOneLineError(const CliResult& r, const std::vector<std::string>& needles) {
@@ -46,9 +45,9 @@ CliResult runOdometryConfig(const fs::path& data, const TempDir& tmp, const std:
                             const std::string& name = "cfg.yaml") {
   const fs::path cfg = tmp / name;
   writeFileBytes(cfg, text);
-  return runCli(
-      "odometry " + quoted(data) + " -q --count 2 -o " + quoted(tmp / "out.tum") + " --config " + quoted(cfg),
-      tmp);
+  return runCli("odometry " + shellQuoted(data) + " -q --count 2 -o " + shellQuoted(tmp / "out.tum") +
+                    " --config " + shellQuoted(cfg),
+                tmp);
 }
 
 std::string deepFlow(std::size_t n) { return "x: " + std::string(n, '[') + std::string(n, ']') + "\n"; }
@@ -95,7 +94,7 @@ TEST(HostileConfigManifest, DeepManifestIsOneLineError) {
   const fs::path map = tmp / "map";
   fs::create_directories(map);
   writeFileBytes(map / "manifest.yaml", deepFlow(20000));
-  const CliResult r = runCli("export " + quoted(map) + " --cloud -o " + quoted(tmp / "out"), tmp);
+  const CliResult r = runCli("export " + shellQuoted(map) + " --cloud -o " + shellQuoted(tmp / "out"), tmp);
   expectOneLineError(r, {"manifest.yaml", "nested more than 64"});
   EXPECT_FALSE(fs::exists(tmp / "out" / "cloud.ply"));
 }
@@ -212,7 +211,7 @@ TEST_P(HostileConfigSimRange, SimulatorConfigIsOneLineErrorNamingFileAndKey) {
   TempDir tmp;
   const fs::path cfg = tmp / "sim.yaml";
   writeFileBytes(cfg, GetParam().yaml);
-  const CliResult r = runCli("simulate " + quoted(tmp / "out") + " --config " + quoted(cfg), tmp);
+  const CliResult r = runCli("simulate " + shellQuoted(tmp / "out") + " --config " + shellQuoted(cfg), tmp);
   expectOneLineError(r, {"sim.yaml", "'" + GetParam().key + "'"});
   EXPECT_FALSE(fs::exists(tmp / "out"));
 }
@@ -238,7 +237,7 @@ TEST_P(HostileConfigOption, IsOneLineErrorBeforeAnyWork) {
   TempDir tmp;
   std::string args = GetParam().args;
   for (std::size_t at; (at = args.find("OUT")) != std::string::npos;)
-    args.replace(at, 3, quoted(tmp / "out"));
+    args.replace(at, 3, shellQuoted(tmp / "out"));
   const CliResult r = runCli(args, tmp);
   expectOneLineError(r, {GetParam().needle});
   EXPECT_FALSE(fs::exists(tmp / "out"));
@@ -272,9 +271,9 @@ TEST_P(HostileConfigTrajectory, AbsurdTrajectoryCoordinateIsOneLineErrorAsEstima
                  "1.0 0 0 0 0 0 0 1\n2.0 " + GetParam().x + " 0 0 0 0 0 1\n3.0 2 0 0 0 0 0 1\n");
   for (const auto& [first, second] : {std::pair{"est.tum", "gt.tum"}, std::pair{"gt.tum", "est.tum"}}) {
     SCOPED_TRACE(std::string("eval ") + first + " " + second);
-    const CliResult r = runCli(
-        "eval " + quoted(tmp / first) + " " + quoted(tmp / second) + " --plot-dir " + quoted(tmp / "plots"),
-        tmp);
+    const CliResult r = runCli("eval " + shellQuoted(tmp / first) + " " + shellQuoted(tmp / second) +
+                                   " --plot-dir " + shellQuoted(tmp / "plots"),
+                               tmp);
     expectOneLineError(r, {"est.tum"});
     EXPECT_FALSE(fs::exists(tmp / "plots"));
   }
@@ -289,11 +288,11 @@ TEST(HostileConfigPhysical, OctomapOfTooManyVoxelsIsRefusedWithItsSize) {
   RADARSLAM_REQUIRE_REAL_DATA(data, "oxford_radar_robotcar_tiny");
   TempDir tmp;
   const fs::path map = tmp / "map";
-  CliResult r = runCli("map-synth " + quoted(data) + " -o " + quoted(map), tmp);
+  CliResult r = runCli("map-synth " + shellQuoted(data) + " -o " + shellQuoted(map), tmp);
   ASSERT_EQ(r.code, 0) << r.err;
-  r = runCli(
-      "export " + quoted(map) + " --octomap --resolution 0.005 --verbosity WARN -o " + quoted(tmp / "out"),
-      tmp);
+  r = runCli("export " + shellQuoted(map) + " --octomap --resolution 0.005 --verbosity WARN -o " +
+                 shellQuoted(tmp / "out"),
+             tmp);
   expectOneLineError(
       r, {"cells is too large", "--resolution"});  // the grid_columns fill is bounded by its raster
   EXPECT_FALSE(fs::exists(tmp / "out" / "map.bt"));
@@ -303,8 +302,9 @@ TEST(HostileConfigShipped, ShippedSimulatorConfigIsInRange) {
   // config/<sensor>.yaml are covered by SlamParams.EveryShippedConfigLoadsWithNoUnknownKey.
   TempDir tmp;
   const fs::path src = RADARSLAM_SOURCE_DIR;
-  const CliResult r = runCli(
-      "simulate " + quoted(tmp / "sim") + " --scans 1 --config " + quoted(src / "config" / "sim.yaml"), tmp);
+  const CliResult r = runCli("simulate " + shellQuoted(tmp / "sim") + " --scans 1 --config " +
+                                 shellQuoted(src / "config" / "sim.yaml"),
+                             tmp);
   EXPECT_EQ(r.code, 0) << r.err;
 }
 

@@ -35,9 +35,8 @@ using radarslam::test::readFileBytes;
 namespace fs = std::filesystem;
 using radarslam::test::CliResult;
 using radarslam::test::runCli;
+using radarslam::test::shellQuoted;
 using Clock = std::chrono::steady_clock;
-
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 
 /// Every entry under `root` (relative path -> type and content): compared before and after a run.
 std::map<std::string, std::string> snapshot(const fs::path& root) {
@@ -123,9 +122,9 @@ class HostileOutput : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     root_ = new radarslam::test::TempDir;
-    CliResult r = runCli("simulate " + q(small()) + " --scans 6 --azimuths 64 --bins 256", *root_);
+    CliResult r = runCli("simulate " + shellQuoted(small()) + " --scans 6 --azimuths 64 --bins 256", *root_);
     ASSERT_EQ(r.code, 0) << r.err;
-    r = runCli("simulate " + q(wide()) + " --scans 4 --azimuths 64", *root_);
+    r = runCli("simulate " + shellQuoted(wide()) + " --scans 4 --azimuths 64", *root_);
     ASSERT_EQ(r.code, 0) << r.err;
   }
   static void TearDownTestSuite() {
@@ -154,16 +153,18 @@ TEST_F(HostileOutput, MapSynthRefusesADirectoryThatIsNotAMapButReplacesItsOwnMap
   fs::create_directories(dir / "keep");
   std::ofstream(dir / "keep" / "p.txt") << "precious\n";
   const auto before = snapshot(dir);
-  expectOneLineError(run("map-synth " + q(small()) + " -o " + q(dir)), dir.string());
+  expectOneLineError(run("map-synth " + shellQuoted(small()) + " -o " + shellQuoted(dir)), dir.string());
   // --force never deletes the contents of a directory that is not a map.
-  expectOneLineError(run("map-synth " + q(small()) + " -o " + q(dir) + " --force"), dir.string());
+  expectOneLineError(run("map-synth " + shellQuoted(small()) + " -o " + shellQuoted(dir) + " --force"),
+                     dir.string());
   EXPECT_EQ(snapshot(dir), before);
 
   // Its own map is what -o replaces, without --force.
   const fs::path map = tmp_ / "m";
-  ASSERT_EQ(run("map-synth " + q(small()) + " -o " + q(map) + " --max-keyframes 1").code, 0);
+  ASSERT_EQ(run("map-synth " + shellQuoted(small()) + " -o " + shellQuoted(map) + " --max-keyframes 1").code,
+            0);
   ASSERT_EQ(radarslam::loadMap(map).keyframes.size(), 1u);
-  const CliResult r = run("map-synth " + q(small()) + " -o " + q(map) + " --every 0.2");
+  const CliResult r = run("map-synth " + shellQuoted(small()) + " -o " + shellQuoted(map) + " --every 0.2");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_GT(radarslam::loadMap(map).keyframes.size(), 1u);
   EXPECT_TRUE(leftovers(tmp_.path(), "m").empty());
@@ -174,48 +175,58 @@ TEST_F(HostileOutput, MapRefusesToWriteOverItsInputDataset) {
   const auto before = snapshot(data);
   for (const fs::path& out : {data, data / "m", data / "gt"}) {
     SCOPED_TRACE(out.string());
-    const CliResult r = run("map " + q(data) + " -o " + q(out) + " -q --force");
+    const CliResult r = run("map " + shellQuoted(data) + " -o " + shellQuoted(out) + " -q --force");
     expectOneLineError(r, out.string());
     EXPECT_NE(r.err.find("input"), std::string::npos) << r.err;
   }
   // A map around the dataset's parent: the output would contain the input.
-  expectOneLineError(run("map-synth " + q(data) + " -o " + q(tmp_.path()) + " --force"), "input");
+  expectOneLineError(run("map-synth " + shellQuoted(data) + " -o " + shellQuoted(tmp_.path()) + " --force"),
+                     "input");
   EXPECT_EQ(snapshot(data), before);
 }
 
 TEST_F(HostileOutput, AMapReplacesARegularFileOnlyWithForce) {
   const fs::path file = tmp_ / "notes.txt";
   std::ofstream(file) << "not a map\n";
-  expectOneLineError(run("map-synth " + q(small()) + " -o " + q(file)), file.string());
+  expectOneLineError(run("map-synth " + shellQuoted(small()) + " -o " + shellQuoted(file)), file.string());
   EXPECT_EQ(readFileBytes(file), "not a map\n");
-  const CliResult r = run("map-synth " + q(small()) + " -o " + q(file) + " --force");
+  const CliResult r = run("map-synth " + shellQuoted(small()) + " -o " + shellQuoted(file) + " --force");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_GT(radarslam::loadMap(file).keyframes.size(), 0u);
 }
 
 TEST_F(HostileOutput, OtherCommandsRefuseOverlappingOutputs) {
   const fs::path map = tmp_ / "m";
-  ASSERT_EQ(run("map-synth " + q(small()) + " -o " + q(map)).code, 0);
+  ASSERT_EQ(run("map-synth " + shellQuoted(small()) + " -o " + shellQuoted(map)).code, 0);
   const auto map_before = snapshot(map);
   const fs::path est = tmp_ / "est.tum";
   fs::copy_file(small() / "gt" / "poses.tum", est);
   const auto data_before = snapshot(small());
 
-  expectOneLineError(run("odometry " + q(small()) + " -o " + q(small() / "t.tum") + " -q"), "input");
-  expectOneLineError(run("odometry " + q(small()) + " -o " + q(small() / "gt" / "poses.tum") + " -q"),
-                     "poses.tum");
-  expectOneLineError(run("odometry " + q(small()) + " -o " + q(tmp_ / "t.tum") + " --eval-dir " +
-                         q(small() / "eval") + " -q"),
+  expectOneLineError(
+      run("odometry " + shellQuoted(small()) + " -o " + shellQuoted(small() / "t.tum") + " -q"), "input");
+  expectOneLineError(
+      run("odometry " + shellQuoted(small()) + " -o " + shellQuoted(small() / "gt" / "poses.tum") + " -q"),
+      "poses.tum");
+  expectOneLineError(run("odometry " + shellQuoted(small()) + " -o " + shellQuoted(tmp_ / "t.tum") +
+                         " --eval-dir " + shellQuoted(small() / "eval") + " -q"),
                      "eval");
-  expectOneLineError(run("localize " + q(map) + " " + q(small()) + " -o " + q(map / "poses.tum") + " -q"),
+  expectOneLineError(run("localize " + shellQuoted(map) + " " + shellQuoted(small()) + " -o " +
+                         shellQuoted(map / "poses.tum") + " -q"),
                      "input");
-  expectOneLineError(run("export " + q(map) + " -o " + q(map)), map.string());
-  expectOneLineError(run("export " + q(map) + " -o " + q(est)), est.string());  // a file, not a directory
-  expectOneLineError(run("eval " + q(est) + " " + q(small()) + " --json " + q(est)), est.string());
-  expectOneLineError(run("eval " + q(est) + " " + q(small()) + " --plot-dir " + q(small())), "input");
-  expectOneLineError(run("cart " + q(small()) + " " + q(small() / "x.png")), "input");
-  expectOneLineError(run("convert " + q(small()) + " " + q(small() / "x.rawlog")), "input");
-  expectOneLineError(run("simulate " + q(map) + " --scans 2 --force"), map.string());
+  expectOneLineError(run("export " + shellQuoted(map) + " -o " + shellQuoted(map)), map.string());
+  expectOneLineError(run("export " + shellQuoted(map) + " -o " + shellQuoted(est)),
+                     est.string());  // a file, not a directory
+  expectOneLineError(
+      run("eval " + shellQuoted(est) + " " + shellQuoted(small()) + " --json " + shellQuoted(est)),
+      est.string());
+  expectOneLineError(
+      run("eval " + shellQuoted(est) + " " + shellQuoted(small()) + " --plot-dir " + shellQuoted(small())),
+      "input");
+  expectOneLineError(run("cart " + shellQuoted(small()) + " " + shellQuoted(small() / "x.png")), "input");
+  expectOneLineError(run("convert " + shellQuoted(small()) + " " + shellQuoted(small() / "x.rawlog")),
+                     "input");
+  expectOneLineError(run("simulate " + shellQuoted(map) + " --scans 2 --force"), map.string());
 
   EXPECT_EQ(snapshot(map), map_before);
   EXPECT_EQ(snapshot(small()), data_before);
@@ -228,14 +239,14 @@ TEST_F(HostileOutput, SimulateReplacesOnlyAPreviousSimulation) {
   std::ofstream(other / "radar" / "mine.txt") << "not a scan\n";
   std::ofstream(other / "notes.txt") << "mine\n";
   const auto before = snapshot(other);
-  expectOneLineError(run("simulate " + q(other) + " --scans 2 --azimuths 64 --bins 256 --force"),
+  expectOneLineError(run("simulate " + shellQuoted(other) + " --scans 2 --azimuths 64 --bins 256 --force"),
                      other.string());
   EXPECT_EQ(snapshot(other), before);
 
   const fs::path sim = tmp_ / "sim";
-  ASSERT_EQ(run("simulate " + q(sim) + " --scans 2 --azimuths 64 --bins 256").code, 0);
-  expectOneLineError(run("simulate " + q(sim) + " --scans 3 --azimuths 64 --bins 256"), "--force");
-  const CliResult r = run("simulate " + q(sim) + " --scans 3 --azimuths 64 --bins 256 --force");
+  ASSERT_EQ(run("simulate " + shellQuoted(sim) + " --scans 2 --azimuths 64 --bins 256").code, 0);
+  expectOneLineError(run("simulate " + shellQuoted(sim) + " --scans 3 --azimuths 64 --bins 256"), "--force");
+  const CliResult r = run("simulate " + shellQuoted(sim) + " --scans 3 --azimuths 64 --bins 256 --force");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(std::distance(fs::directory_iterator(sim / "radar"), fs::directory_iterator()), 3);
   EXPECT_TRUE(leftovers(tmp_.path(), "sim").empty());
@@ -247,7 +258,7 @@ TEST_F(HostileOutput, OdometryWritesIntoACharacterDeviceInPlace) {
   const fs::path dev = tmp_ / "null";
   if (::mknod(dev.c_str(), S_IFCHR | 0666, ::makedev(1, 3)) != 0)
     GTEST_SKIP() << "mknod needs CAP_MKNOD: " << std::strerror(errno);
-  const CliResult r = run("odometry " + q(small()) + " -o " + q(dev) + " -q");
+  const CliResult r = run("odometry " + shellQuoted(small()) + " -o " + shellQuoted(dev) + " -q");
   ASSERT_EQ(r.code, 0) << r.err;
   struct stat st {};
   ASSERT_EQ(::stat(dev.c_str(), &st), 0);
@@ -261,7 +272,7 @@ TEST_F(HostileOutput, OdometryWritesIntoAFifoInPlace) {
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
   const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // so that the writer's open returns
   ASSERT_GE(reader, 0);
-  const CliResult r = run("odometry " + q(small()) + " -o " + q(fifo) + " -q");
+  const CliResult r = run("odometry " + shellQuoted(small()) + " -o " + shellQuoted(fifo) + " -q");
   std::string got(65536, '\0');
   const ssize_t n = ::read(reader, got.data(), got.size());
   ::close(reader);
@@ -277,9 +288,10 @@ TEST_F(HostileOutput, OdometryWritesIntoAFifoInPlace) {
 
 TEST_F(HostileOutput, OutputThroughASymlinkReplacesItsTarget) {
   const fs::path map = tmp_ / "real_map", link = tmp_ / "link";
-  ASSERT_EQ(run("map-synth " + q(small()) + " -o " + q(map) + " --max-keyframes 1").code, 0);
+  ASSERT_EQ(run("map-synth " + shellQuoted(small()) + " -o " + shellQuoted(map) + " --max-keyframes 1").code,
+            0);
   fs::create_directory_symlink("real_map", link);
-  const CliResult r = run("map-synth " + q(small()) + " -o " + q(link) + " --every 0.2");
+  const CliResult r = run("map-synth " + shellQuoted(small()) + " -o " + shellQuoted(link) + " --every 0.2");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::is_symlink(link)) << "the link was replaced";
   EXPECT_GT(radarslam::loadMap(map).keyframes.size(), 1u);  // the map it points to is the new one
@@ -287,7 +299,7 @@ TEST_F(HostileOutput, OutputThroughASymlinkReplacesItsTarget) {
   const fs::path traj = tmp_ / "traj.tum", traj_link = tmp_ / "traj_link.tum";
   std::ofstream(traj) << "old\n";
   fs::create_symlink("traj.tum", traj_link);
-  ASSERT_EQ(run("odometry " + q(small()) + " -o " + q(traj_link) + " -q").code, 0);
+  ASSERT_EQ(run("odometry " + shellQuoted(small()) + " -o " + shellQuoted(traj_link) + " -q").code, 0);
   EXPECT_TRUE(fs::is_symlink(traj_link));
   EXPECT_EQ(lines(readFileBytes(traj)), 7u);  // header + 6 poses
 }
@@ -302,16 +314,19 @@ TEST_F(HostileOutput, BadOutputsFailBeforeTheRun) {
     const CliResult r = run(args);
     expectOneLineError(r, needle);  // one line: no "map: ..." / "odometry: ..." start of a run
   };
-  check("odometry " + q(small()) + " -o '' -q", "-o");
-  check("map " + q(small()) + " -o '' -q", "-o");
-  check("map-synth " + q(small()) + " -o ''", "-o");
-  check("localize " + q(tmp_ / "m") + " " + q(small()) + " -o '' -q", "-o");
-  check("convert " + q(small()) + " ''", "OUT");
-  check("odometry " + q(small()) + " -o " + q(file / "t.tum") + " -q", (file / "t.tum").string());
-  check("map " + q(small()) + " -o " + q(file / "m") + " -q", (file / "m").string());
-  check("odometry " + q(small()) + " -o " + q(tmp_ / "t.tum") + " --eval-dir " + q(file) + " -q",
+  check("odometry " + shellQuoted(small()) + " -o '' -q", "-o");
+  check("map " + shellQuoted(small()) + " -o '' -q", "-o");
+  check("map-synth " + shellQuoted(small()) + " -o ''", "-o");
+  check("localize " + shellQuoted(tmp_ / "m") + " " + shellQuoted(small()) + " -o '' -q", "-o");
+  check("convert " + shellQuoted(small()) + " ''", "OUT");
+  check("odometry " + shellQuoted(small()) + " -o " + shellQuoted(file / "t.tum") + " -q",
+        (file / "t.tum").string());
+  check("map " + shellQuoted(small()) + " -o " + shellQuoted(file / "m") + " -q", (file / "m").string());
+  check("odometry " + shellQuoted(small()) + " -o " + shellQuoted(tmp_ / "t.tum") + " --eval-dir " +
+            shellQuoted(file) + " -q",
         file.string());
-  check("map " + q(small()) + " -o " + q(tmp_ / "m") + " --grid-resolution 1e-6 -q", "--grid-resolution");
+  check("map " + shellQuoted(small()) + " -o " + shellQuoted(tmp_ / "m") + " --grid-resolution 1e-6 -q",
+        "--grid-resolution");
   EXPECT_FALSE(fs::exists(tmp_ / "m"));
   EXPECT_FALSE(fs::exists(tmp_ / "t.tum"));
   EXPECT_EQ(readFileBytes(file), "x\n");
@@ -319,11 +334,12 @@ TEST_F(HostileOutput, BadOutputsFailBeforeTheRun) {
 
 TEST_F(HostileOutput, FailedGridExportLeavesThePreviousMapWhole) {
   const fs::path map = tmp_ / "m";
-  ASSERT_EQ(run("map " + q(small()) + " -o " + q(map) + " -q --threads 1").code, 0);
+  ASSERT_EQ(run("map " + shellQuoted(small()) + " -o " + shellQuoted(map) + " -q --threads 1").code, 0);
   const auto before = snapshot(map);
   ASSERT_TRUE(before.count("grid.png") && before.count("trajectory.tum"));
   // Valid option, but the wide drive's 1 cm grid is too large: found after the run, before the swap.
-  const CliResult r = run("map " + q(wide()) + " -o " + q(map) + " -q --threads 1 --grid-resolution 0.01");
+  const CliResult r = run("map " + shellQuoted(wide()) + " -o " + shellQuoted(map) +
+                          " -q --threads 1 --grid-resolution 0.01");
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("too large"), std::string::npos) << r.err;
   EXPECT_EQ(snapshot(map), before) << "the previous map (with its products) must be untouched";
@@ -353,14 +369,15 @@ TEST_F(HostileOutput, GroundTruthThatDoesNotCoverTheScansIsBlamedOnTheGroundTrut
   const std::string gt_file = (data / "gt" / "radar_odometry.csv").string();
   const fs::path traj = tmp_ / "t.tum";
   // The requested trajectory exists: exit 0, a warning naming the ground truth file.
-  CliResult r = run("odometry " + q(data) + " -o " + q(traj) + " -q");
+  CliResult r = run("odometry " + shellQuoted(data) + " -o " + shellQuoted(traj) + " -q");
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(lines(readFileBytes(traj)), 7u);  // header + 6 poses
   EXPECT_NE((r.out + r.err).find("WARN: " + gt_file), std::string::npos) << r.out << r.err;
   EXPECT_EQ(r.err.find("error"), std::string::npos) << r.err;
   // The requested report cannot be made: exit 1, the error names the ground truth file.
   const fs::path eval = tmp_ / "eval";
-  r = run("odometry " + q(data) + " -o " + q(traj) + " --eval-dir " + q(eval) + " -q");
+  r = run("odometry " + shellQuoted(data) + " -o " + shellQuoted(traj) + " --eval-dir " + shellQuoted(eval) +
+          " -q");
   EXPECT_EQ(r.code, 1) << r.err;
   const std::string last = r.err.substr(r.err.rfind('\n', r.err.size() - 2) + 1);
   EXPECT_EQ(last.rfind("radarslam: error: " + gt_file + ": ", 0), 0u) << r.err;
@@ -403,7 +420,7 @@ TEST_F(HostileOutput, InterruptedConvertLeavesNoTemporary) {
 
 TEST_F(HostileOutput, InterruptedExportLeavesNoPartialSetOfFiles) {
   const fs::path map = tmp_ / "m", out = tmp_ / "exports";
-  ASSERT_EQ(run("map-synth " + q(wide()) + " -o " + q(map) + " --every 0.1").code, 0);
+  ASSERT_EQ(run("map-synth " + shellQuoted(wide()) + " -o " + shellQuoted(map) + " --every 0.1").code, 0);
   // A fine grid: the export takes about a second; interrupted as soon as it writes anything.
   const pid_t pid = start({"export", map.string(), "-o", out.string(), "--resolution", "0.05"}, tmp_.path());
   ASSERT_TRUE(waitUntil(pid, [&] { return fs::exists(out) || !leftovers(tmp_.path(), "exports").empty(); }));
@@ -421,7 +438,7 @@ TEST_F(HostileOutput, InterruptedSimulateLeavesNothingAndTheNextRunNeedsNoForce)
   EXPECT_TRUE(interrupt(pid));
   EXPECT_FALSE(fs::exists(sim));
   EXPECT_TRUE(leftovers(tmp_.path(), "sim").empty());
-  const CliResult r = run("simulate " + q(sim) + " --scans 2 --azimuths 64 --bins 256");
+  const CliResult r = run("simulate " + shellQuoted(sim) + " --scans 2 --azimuths 64 --bins 256");
   EXPECT_EQ(r.code, 0) << r.err;
 }
 

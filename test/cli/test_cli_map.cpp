@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "file_contents.h"
 #include "radarslam/io/dataset.h"
 #include "radarslam/io/trajectory_files.h"
 #include "radarslam/map/layer_files.h"
@@ -39,8 +40,7 @@ void expectSavedLayers(const fs::path& map) {
   ASSERT_TRUE(s.layers.has_value());
   ASSERT_EQ(s.layers->files.size(), 4u);
   for (const auto& f : s.layers->files) {
-    std::ifstream in(map / f.name, std::ios::binary);
-    const std::string bytes(std::istreambuf_iterator<char>(in), {});
+    const std::string bytes = radarslam::test::readFileBytes(map / f.name);
     EXPECT_EQ(bytes.size(), f.bytes) << f.name;
     EXPECT_EQ(radarslam::sha256Hex(bytes), f.sha256) << f.name;
   }
@@ -113,8 +113,8 @@ TEST_F(CliMap, OneThreadIsDeterministic) {
       runCli("map '" + data(1).string() + "' -o '" + b.string() + "' --threads 1 --count 25 -q", tmp_.path())
           .code,
       0);
-  std::ifstream fa(a / "trajectory.tum"), fb(b / "trajectory.tum");
-  const std::string ta(std::istreambuf_iterator<char>(fa), {}), tb(std::istreambuf_iterator<char>(fb), {});
+  const std::string ta = radarslam::test::readFileBytes(a / "trajectory.tum"),
+                    tb = radarslam::test::readFileBytes(b / "trajectory.tum");
   EXPECT_FALSE(ta.empty());
   EXPECT_EQ(ta, tb);
   EXPECT_EQ(radarslam::loadMap(a).keyframes, radarslam::loadMap(b).keyframes);

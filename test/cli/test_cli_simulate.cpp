@@ -19,9 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 using radarslam::test::CliResult;
 using radarslam::test::runCli;
+using radarslam::test::shellQuoted;
 using radarslam::test::TempDir;
-
-std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
 /// Small scans: the option checks and the world generation are what is tested, not the rendering.
 const std::string kSmall = " --azimuths 64 --bins 256";
@@ -51,8 +50,8 @@ TEST_P(SimulateWorldOptions, BadValueIsOneLineErrorAndLeavesNothing) {
   if (!p.csv.empty()) std::ofstream(csv, std::ios::binary) << p.csv;
   std::string args = p.args;
   for (std::size_t at; (at = args.find("OUT")) != std::string::npos;)
-    args.replace(at, 3, quoted(tmp / "out"));
-  for (std::size_t at; (at = args.find("CSV")) != std::string::npos;) args.replace(at, 3, quoted(csv));
+    args.replace(at, 3, shellQuoted(tmp / "out"));
+  for (std::size_t at; (at = args.find("CSV")) != std::string::npos;) args.replace(at, 3, shellQuoted(csv));
   // --scans 3 unless the case is about --length-m: should a check be missing, the run stays short.
   if (args.find("--length-m") == std::string::npos) args += " --scans 3";
   const CliResult r = runCli("simulate " + args + kSmall, tmp);
@@ -116,7 +115,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(SimulateWorld, NetworkWritesExactlyTheScansAskedFor) {
   TempDir tmp;
   const fs::path out = tmp / "net";
-  const CliResult r = runCli("simulate " + quoted(out) + " --world network --scans 5" + kSmall, tmp);
+  const CliResult r = runCli("simulate " + shellQuoted(out) + " --world network --scans 5" + kSmall, tmp);
   ASSERT_EQ(r.code, 0) << r.err;
   std::size_t pngs = 0;
   for (const auto& e : fs::directory_iterator(out / "radar")) pngs += e.path().extension() == ".png";

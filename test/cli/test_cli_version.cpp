@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli_run.h"
+#include "file_contents.h"
 #include "radarslam/core/version.h"
 #include "shared_data.h"
 #include "temp_dir.h"
@@ -31,7 +32,6 @@ TEST(CliVersion, MapManifestRecordsTheVersion) {
   const auto map = tmp / "m";
   const auto r = test::runCli("map-synth '" + oxford.string() + "' -o '" + map.string() + "'", tmp);
   ASSERT_EQ(r.code, 0) << r.err;
-  std::ifstream in(map / "manifest.yaml");
-  const std::string manifest{std::istreambuf_iterator<char>(in), {}};
+  const std::string manifest = test::readFileBytes(map / "manifest.yaml");
   EXPECT_NE(manifest.find(versionText()), std::string::npos) << manifest;
 }

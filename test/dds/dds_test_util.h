@@ -22,6 +22,7 @@
 
 #include <radarslam/map/keyframe_map.h>
 #include <radarslam/map/map_from_trajectory.h>
+#include "file_contents.h"
 
 extern char** environ;
 
@@ -45,12 +46,7 @@ inline double timeScale() {
   return v >= 1.0 ? v : 1.0;
 }
 
-inline std::string readText(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+inline std::string readText(const std::filesystem::path& p) { return radarslam::test::readFileBytes(p); }
 
 /// A child process with stdout/stderr captured to files; killed (SIGKILL) if still running at
 /// destruction.

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "file_contents.h"
 #include "radarslam/core/errors.h"
 
 namespace radarslam::test {
@@ -66,15 +67,13 @@ inline void writeTransposedPng(const std::filesystem::path& file, int azimuths, 
   ASSERT_TRUE(cv::imwrite(file.string(), img));
 }
 
+/// writeFileBytes, creating the parent directories first.
 inline void writeText(const std::filesystem::path& file, const std::string& text) {
   std::filesystem::create_directories(file.parent_path());
-  std::ofstream(file) << text;
+  writeFileBytes(file, text);
 }
 
-inline std::string readText(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
+inline std::string readText(const std::filesystem::path& file) { return readFileBytes(file); }
 
 /// Copies a directory tree, making the copies writable (the real data is read-only).
 inline void copyTree(const std::filesystem::path& from, const std::filesystem::path& to) {

@@ -9,6 +9,7 @@
 #include <iterator>
 #include <string>
 
+#include "file_contents.h"
 #include "temp_dir.h"
 
 namespace radarslam::test {
@@ -26,9 +27,8 @@ inline CliResult runCommand(const std::string& command, const std::filesystem::p
   const int status = std::system(cmd.c_str());
   CliResult r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream o(out_file), e(err_file);
-  r.out.assign(std::istreambuf_iterator<char>(o), {});
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
+  r.out = readFileBytes(out_file);
+  r.err = readFileBytes(err_file);
   return r;
 }
 
@@ -38,5 +38,10 @@ inline CliResult runCli(const std::string& args, const std::filesystem::path& di
 }
 
 inline CliResult runCli(const std::string& args, const TempDir& tmp) { return runCli(args, tmp.path()); }
+
+/// `path` in single quotes for a shell command line (the tests' paths hold no quote).
+inline std::string shellQuoted(const std::filesystem::path& path) {
+  return "'" + path.string() + "'";
+}
 
 }  // namespace radarslam::test

@@ -5,23 +5,13 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 #include <string>
 
+#include "file_contents.h"
 #include "radarslam/map/sha256.h"
 
 namespace radarslam::test {
-
-inline std::string readFileBytes(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-inline void writeFileBytes(const std::filesystem::path& p, const std::string& s) {
-  std::ofstream out(p, std::ios::binary | std::ios::trunc);
-  out << s;
-}
 
 inline void downgradeToFormat1(const std::filesystem::path& dir) {
   std::string manifest = readFileBytes(dir / "manifest.yaml");
