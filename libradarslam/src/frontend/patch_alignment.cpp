@@ -34,6 +34,24 @@ void sampleGrid(const cv::Mat& m, cv::Point2f p, int h, float* out) {
   }
 }
 
+/// dot[oy * O + ox] += sum over the template of t * cur at offset (ox, oy) from (x0, y0), summed
+/// in the same order as the general loop (row by row of the template), with O x O sums held in
+/// local variables instead of memory.
+template <int O>
+void accumulateDots(const float* t, const cv::Mat& cur, int x0, int y0, int n, double* dot) {
+  double d[O * O] = {};
+  for (int ty = 0; ty < n; ++ty) {
+    const float* rows[O];
+    for (int oy = 0; oy < O; ++oy) rows[oy] = cur.ptr<float>(y0 + ty + oy) + x0;
+    for (int tx = 0; tx < n; ++tx) {
+      const double tv = t[ty * n + tx];
+      for (int oy = 0; oy < O; ++oy)
+        for (int ox = 0; ox < O; ++ox) d[oy * O + ox] += tv * rows[oy][tx + ox];
+    }
+  }
+  for (int i = 0; i < O * O; ++i) dot[i] += d[i];
+}
+
 /// Zero-mean NCC of the template `t` ((2r+1)^2, zero mean, squared norm tn) with `cur` at every
 /// integer offset within s of (cx, cy); returns the best score and offset. Window sums come from
 /// a summed-area table; the dot products accumulate per offset, so no long dependency chains.
@@ -55,15 +73,20 @@ double bestIntegerOffset(const std::vector<float>& t, double tn, const cv::Mat& 
       sat2[i] = sat2[i - static_cast<std::size_t>(w + 1)] + rs2;
     }
   }
-  for (int ty = 0; ty < n; ++ty)
-    for (int tx = 0; tx < n; ++tx) {
-      const double tv = t[static_cast<std::size_t>(ty * n + tx)];
-      for (int oy = 0; oy < o; ++oy) {
-        const float* row = cur.ptr<float>(cy - s - r + ty + oy) + (cx - s - r + tx);
-        double* d = dot.data() + oy * o;
-        for (int ox = 0; ox < o; ++ox) d[ox] += tv * row[ox];
+  if (o == 3)  // the tracking search (s = 1): the nine sums stay in registers
+    accumulateDots<3>(t.data(), cur, cx - s - r, cy - s - r, n, dot.data());
+  else if (o == 5)  // the inliers' search (s = 2)
+    accumulateDots<5>(t.data(), cur, cx - s - r, cy - s - r, n, dot.data());
+  else
+    for (int ty = 0; ty < n; ++ty)
+      for (int tx = 0; tx < n; ++tx) {
+        const double tv = t[static_cast<std::size_t>(ty * n + tx)];
+        for (int oy = 0; oy < o; ++oy) {
+          const float* row = cur.ptr<float>(cy - s - r + ty + oy) + (cx - s - r + tx);
+          double* d = dot.data() + oy * o;
+          for (int ox = 0; ox < o; ++ox) d[ox] += tv * row[ox];
+        }
       }
-    }
   const double cnt = static_cast<double>(n * n);
   auto rect = [&](const std::vector<double>& a, int x, int y) {  // sum over [x, x+n) x [y, y+n)
     const auto at = [&](int yy, int xx) { return a[static_cast<std::size_t>(yy * (w + 1) + xx)]; };
@@ -104,16 +127,20 @@ PatchAlignResult alignPatch(const AlignImage& ref, cv::Point2f ref_pt, const Ali
 
   // Template sampled at the sub-pixel reference keypoint, with a one-pixel border for gradients.
   const int n = 2 * r + 1, ne = n + 2;
-  std::vector<float> ext(static_cast<std::size_t>(ne * ne)), t(static_cast<std::size_t>(n * n));
+  // Scratch reused across calls (thousands per scan): no allocation once the sizes are reached.
+  thread_local std::vector<float> ext, t, tgx, tgy, cur_patch;
+  ext.resize(static_cast<std::size_t>(ne * ne));
+  t.resize(static_cast<std::size_t>(n * n));
   sampleGrid(ref.smooth, ref_pt, r + 1, ext.data());
   auto ext_at = [&](int y, int x) { return ext[static_cast<std::size_t>((y + 1) * ne + x + 1)]; };
   double mean = 0;
   for (int y = 0, k = 0; y < n; ++y)
     for (int x = 0; x < n; ++x, ++k) mean += t[static_cast<std::size_t>(k)] = ext_at(y, x);
   mean /= n * n;
-  double tn = 0;
-  for (float& v : t) {
-    v = static_cast<float>(v - mean);
+  double tn = 0;  // summed in a local, not through memory (a store-to-load chain per pixel)
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const float v = static_cast<float>(t[k] - mean);
+    t[k] = v;
     tn += static_cast<double>(v) * v;
   }
 
@@ -125,7 +152,8 @@ PatchAlignResult alignPatch(const AlignImage& ref, cv::Point2f ref_pt, const Ali
 
   // 2. Translational Lucas-Kanade from the best integer offset, inverse compositional (template
   //    gradients and Hessian computed once), on zero-mean, contrast-matched patches.
-  std::vector<float> tgx(t.size()), tgy(t.size());
+  tgx.resize(t.size());
+  tgy.resize(t.size());
   double h00 = 0, h01 = 0, h11 = 0;
   for (int y = 0, k = 0; y < n; ++y)
     for (int x = 0; x < n; ++x, ++k) {
@@ -138,7 +166,7 @@ PatchAlignResult alignPatch(const AlignImage& ref, cv::Point2f ref_pt, const Ali
     }
   const double det = h00 * h11 - h01 * h01;
   float px = static_cast<float>(cx + bx), py = static_cast<float>(cy + by);
-  std::vector<float> cur_patch(t.size());
+  cur_patch.resize(t.size());
   for (int it = 0; it < params.lk_iterations && det > 1e-9; ++it) {
     sampleGrid(cur.smooth, {px, py}, r, cur_patch.data());
     double cm = 0;
