@@ -40,8 +40,6 @@ inline CliResult runCli(const std::string& args, const std::filesystem::path& di
 inline CliResult runCli(const std::string& args, const TempDir& tmp) { return runCli(args, tmp.path()); }
 
 /// `path` in single quotes for a shell command line (the tests' paths hold no quote).
-inline std::string shellQuoted(const std::filesystem::path& path) {
-  return "'" + path.string() + "'";
-}
+inline std::string shellQuoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
 
 }  // namespace radarslam::test
