@@ -70,7 +70,7 @@ int compareReal(const fs::path& real_dir, const fs::path& out_png, sim::Simulati
             << sim::compareRealism(sim::averageRealism(real_bands), sim::averageRealism(sim_bands)).table;
   PolarToCartesian cart(CartesianParams{.size_px = 400, .m_per_px = 0.4});
   cv::Mat side;
-  cv::hconcat(labelled(cart.convert(*first_real), "real (Oxford)"),
+  cv::hconcat(labelled(cart.convert(*first_real), "real (" + toString(reader->kind()) + ")"),
               labelled(cart.convert(shown), "simulated"), side);
   std::vector<unsigned char> bytes;
   cv::imencode(".png", side, bytes, {cv::IMWRITE_PNG_COMPRESSION, 9});
@@ -142,8 +142,9 @@ int runSimulate(int argc, char** argv) {
       "OUT_DIR", "Output directory (with --compare-real: the output PNG)", true, "", "OUT_DIR", c);
   TCLAP::ValueArg<std::string> compare(
       "", "compare-real",
-      "Compare simulated scans with the real Oxford scans in DIR: print intensity "
-      "statistics and write a side-by-side Cartesian PNG to OUT_DIR",
+      "Compare simulated scans with the real scans in DIR (any dataset the readers accept; the "
+      "simulation takes its sensor geometry): print intensity statistics and write a side-by-side "
+      "Cartesian PNG to OUT_DIR",
       false, "", "DIR", c);
   TCLAP::SwitchArg force(
       "", "force",

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "shared_data.h"
 #include "temp_dir.h"
 
 namespace {
@@ -131,6 +132,22 @@ TEST(SimulateWorld, NetworkWritesExactlyTheScansAskedFor) {
   EXPECT_NE(r.out.find("simulated 5 scans"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("world: network"), std::string::npos) << r.out;
   EXPECT_EQ(leftOver(tmp.path(), {"net"}), std::set<std::string>{});
+}
+
+// --compare-real takes any dataset the readers accept, not only Oxford's: the RADIATE fog scans
+// against the simulated fog (docs/simulator.md, "Weather against real fog").
+TEST(CliSimulate, CompareRealReadsTheRadiateFogScans) {
+  RADARSLAM_REQUIRE_REAL_DATA(radiate, "radiate_tiny_foggy");
+  TempDir tmp;
+  const fs::path png = tmp / "cmp.png";
+  const CliResult r =
+      runCli("simulate " + shellQuoted(png) + " --weather fog --compare-real " + shellQuoted(radiate), tmp);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("(18 scans)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("per range band"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("of 32 statistics within x1.5"), std::string::npos) << r.out;
+  EXPECT_GT(fs::file_size(png), 10000u);
+  EXPECT_EQ(leftOver(tmp.path(), {"cmp.png"}), std::set<std::string>{});
 }
 
 }  // namespace
