@@ -2,8 +2,6 @@
 // a saved map records the same text in its manifest (software_version).
 #include <gtest/gtest.h>
 
-#include <fstream>
-#include <iterator>
 #include <regex>
 #include <string>
 
