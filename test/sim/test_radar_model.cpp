@@ -175,6 +175,43 @@ TEST(SimRadar, SnowBlanksTheFrontAndFogRaisesTheFloor) {
   EXPECT_THROW(weatherPreset("hail"), InputError);
 }
 
+TEST(SimRadar, FogRaisesOnlyTheFloorRainAddsNearRangeClutter) {
+  // An empty world seen by a parked radar: all that is rendered is the noise floor and what the
+  // weather adds. Fog droplets are Rayleigh scatterers ~60 dB weaker than heavy rain, so fog may
+  // raise the floor at every range alike; rain's backscatter lifts the first tens of metres over
+  // the far floor. Measured as the mean code at 12-30 m (past the STC) minus that at 100-150 m.
+  World w = emptyWorld();
+  w.buildIndex();
+  RadarGeometry g;
+  g.azimuths = 100, g.bins = 3500;        // 0.0438 m bins: out to 153 m
+  const Route parked = straightRoute(0);  // the renderer keeps references to world and route
+  auto nearOverFar = [&](const Weather& weather) {
+    RadarRenderer renderer(w, parked, g, {}, weather, 7);
+    CObservationRadarScan s;
+    renderer.render(kStart, 0, s);
+    double near = 0, far = 0;
+    std::size_t n_near = 0, n_far = 0;
+    for (std::size_t a = 0; a < s.num_azimuths; ++a)
+      for (std::size_t b = 0; b < s.num_bins; ++b) {
+        const double r = s.binRange(b);
+        if (r >= 12 && r <= 30) near += s.row(a)[b], ++n_near;
+        if (r >= 100 && r <= 150) far += s.row(a)[b], ++n_far;
+      }
+    return near / static_cast<double>(n_near) - far / static_cast<double>(n_far);
+  };
+  const double clear = nearOverFar(weatherPreset("clear"));
+  const double fog = nearOverFar(weatherPreset("fog")) - clear;
+  const double rain = nearOverFar(weatherPreset("rain")) - clear;
+  Weather fog_with_clutter = weatherPreset("fog");  // what the fog preset drew until 2026-12-07
+  fog_with_clutter.volume_clutter_power = 40, fog_with_clutter.volume_clutter_range_m = 25;
+  const double cluttered = nearOverFar(fog_with_clutter) - clear;
+  std::cout << "near-range code lift over clear (near minus far): fog " << fog << ", rain " << rain
+            << ", fog with volume clutter " << cluttered << "\n";
+  EXPECT_LT(std::abs(fog), 0.5);
+  EXPECT_GT(rain, 1.0);  // the measure sees clutter where there is some
+  EXPECT_GT(cluttered, 1.0);
+}
+
 TEST(SimConfig, ShippedYamlMatchesDefaultsAndRejectsTypos) {
   SimulationConfig defaults, loaded;
   loadSimulationConfig(std::string(RADARSLAM_SOURCE_DIR) + "/config/sim.yaml", loaded);

@@ -28,9 +28,10 @@ Weather weatherPreset(const std::string& name) {
   if (name == "clear") return w;
   if (name == "fog") {  // fog barely attenuates 77 GHz; droplets raise the floor a little
     w.noise_floor_gain_db = 3.0;
-    w.attenuation_db_per_m = 0.004;
-    w.volume_clutter_power = 40;
-    w.volume_clutter_range_m = 25;
+    w.attenuation_db_per_m = 0.004;  // ~1 g/m^3 of liquid water (ITU-R P.840), two-way: dense fog
+    // No volume clutter: fog droplets (~20 um) scatter in the Rayleigh regime, ~-20 dBZ against
+    // ~+40 dBZ of heavy rain, i.e. 60 dB below the rain preset's clutter; real RADIATE fog scans
+    // show no near-range disc (docs/simulator.md, weather against real fog).
     return w;
   }
   if (name == "rain") {  // heavy rain: ~10 dB/km one-way, strong near-range backscatter
