@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 #include "radarslam/core/errors.h"
 #include "radarslam/io/oxford_writer.h"
@@ -44,15 +45,17 @@ int peakBin(const CObservationRadarScan& scan, std::size_t az) {
   return static_cast<int>(std::max_element(row.begin() + 20, row.end()) - row.begin());
 }
 
-double meanCode(const CObservationRadarScan& s, double min_angle_deg, double max_angle_deg,
-                double min_range) {
+/// Mean code over the azimuths within [min_angle_deg, max_angle_deg] and the ranges within
+/// [min_range, max_range].
+double meanCode(const CObservationRadarScan& s, double min_angle_deg, double max_angle_deg, double min_range,
+                double max_range = std::numeric_limits<double>::infinity()) {
   double sum = 0;
   std::size_t n = 0;
   for (std::size_t a = 0; a < s.num_azimuths; ++a) {
     double deg = std::remainder(s.azimuth_angles_rad[a], 2 * M_PI) * 180 / M_PI;
     if (deg < min_angle_deg || deg > max_angle_deg) continue;
     for (std::size_t b = 0; b < s.num_bins; ++b)
-      if (s.binRange(b) >= min_range) sum += s.row(a)[b], ++n;
+      if (s.binRange(b) >= min_range && s.binRange(b) <= max_range) sum += s.row(a)[b], ++n;
   }
   return sum / static_cast<double>(n);
 }
@@ -189,15 +192,7 @@ TEST(SimRadar, FogRaisesOnlyTheFloorRainAddsNearRangeClutter) {
     RadarRenderer renderer(w, parked, g, {}, weather, 7);
     CObservationRadarScan s;
     renderer.render(kStart, 0, s);
-    double near = 0, far = 0;
-    std::size_t n_near = 0, n_far = 0;
-    for (std::size_t a = 0; a < s.num_azimuths; ++a)
-      for (std::size_t b = 0; b < s.num_bins; ++b) {
-        const double r = s.binRange(b);
-        if (r >= 12 && r <= 30) near += s.row(a)[b], ++n_near;
-        if (r >= 100 && r <= 150) far += s.row(a)[b], ++n_far;
-      }
-    return near / static_cast<double>(n_near) - far / static_cast<double>(n_far);
+    return meanCode(s, -180, 180, 12, 30) - meanCode(s, -180, 180, 100, 150);
   };
   const double clear = nearOverFar(weatherPreset("clear"));
   const double fog = nearOverFar(weatherPreset("fog")) - clear;
