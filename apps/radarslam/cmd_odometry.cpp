@@ -113,7 +113,8 @@ int runOdometry(int argc, char** argv) {
   RadarOdometry odometry(params);
   ScanIterator scans(*reader, skip_arg.getValue(), first, end, kPrefetchScans);
   const auto t0 = Clock::now();
-  std::size_t done = 0, lost = 0, keyframes = 0, widened = 0, second_motion = 0;
+  std::size_t done = 0, lost = 0, keyframes = 0, widened = 0, second_motion = 0, prior_weighed = 0,
+              prior_applied = 0;
   StageTimes total;
   std::vector<StepRecord> steps;
   ProgressLine progress("odometry", scans.total(), !quiet_arg.getValue());
@@ -126,6 +127,8 @@ int runOdometry(int argc, char** argv) {
     keyframes += step.new_keyframe;
     widened += step.widened;
     second_motion += step.second_motion;
+    prior_weighed += step.prior_chi2 >= 0;
+    prior_applied += step.prior_applied;
     const auto& t = step.times;
     total.cartesian += t.cartesian, total.detect += t.detect, total.describe += t.describe;
     total.align_prep += t.align_prep, total.match += t.match, total.clique += t.clique, total.svd += t.svd;
@@ -150,6 +153,10 @@ int runOdometry(int argc, char** argv) {
       "re-matched with the wide radius (adaptive radius: the motion left its bound); %zu took the second "
       "rigid motion (the largest rigid set was moving)\n",
       done - lost, lost, scans.skipped(), keyframes, widened, second_motion);
+  std::printf(
+      "  motion prior   weighed in %zu scans, within its chi^2 gate (applied) in %zu; the other %zu: "
+      "the motion left the model or the matches disagree with it\n",
+      prior_weighed, prior_applied, prior_weighed - prior_applied);
   const ScanIteratorStats& input = scans.stats();
   std::printf(
       "  input          %zu duplicate scans skipped, %zu unreadable skipped, %zu blank scans, %zu time gaps "

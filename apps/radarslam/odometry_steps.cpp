@@ -32,6 +32,7 @@ StepRecord recordOf(const OdometryStep& step) {
   r.predicted = step.predicted_motion, r.estimated = step.motion;
   r.widened = step.widened, r.second_motion = step.second_motion, r.implausible = step.implausible;
   r.new_keyframe = step.new_keyframe;
+  r.prior_chi2 = step.prior_chi2, r.prior_applied = step.prior_applied;
   r.ms = step.times.total();
   return r;
 }
@@ -50,7 +51,8 @@ StepTruth trueMotions(const std::vector<StepRecord>& steps, const TruthAt& truth
 std::string formatSteps(const std::vector<StepRecord>& steps, const std::optional<StepTruth>& truth) {
   std::string text =
       "stamp_s,status,keypoints,matches,inliers,radius_m,radius_per_m,pred_dx_m,pred_dy_m,pred_dyaw_deg,"
-      "est_dx_m,est_dy_m,est_dyaw_deg,widened,second_motion,implausible,new_keyframe,track_ms";
+      "est_dx_m,est_dy_m,est_dyaw_deg,widened,second_motion,implausible,new_keyframe,track_ms,prior_chi2,"
+      "prior_applied";
   if (truth) text += ",true_dx_m,true_dy_m,true_dyaw_deg,est_error_m,true_outside_radius";
   text += "\n";
   for (std::size_t i = 0; i < steps.size(); ++i) {
@@ -63,6 +65,7 @@ std::string formatSteps(const std::vector<StepRecord>& steps, const std::optiona
                        s.predicted.x, s.predicted.y, degrees(s.predicted.phi), s.estimated.x, s.estimated.y,
                        degrees(s.estimated.phi), int{s.widened}, int{s.second_motion}, int{s.implausible},
                        int{s.new_keyframe}, s.ms);
+    text += formatText(",%.2f,%d", s.prior_chi2, int{s.prior_applied});
     if (truth) {
       if (const auto& t = truth->at(i)) {
         const mrpt::math::TPose2D error = s.estimated - *t;

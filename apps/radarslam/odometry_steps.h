@@ -21,6 +21,8 @@ struct StepRecord {
   SearchRadius search_radius;
   mrpt::math::TPose2D predicted, estimated;  ///< T_previous_current
   bool widened = false, second_motion = false, implausible = false, new_keyframe = false;
+  double prior_chi2 = -1.0;  ///< OdometryStep::prior_chi2
+  bool prior_applied = false;
   double ms = 0.0;  ///< the tracker's stage times summed
 };
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "radarslam/frontend/pose_refiner.h"
 #include "radarslam/io/dataset.h"
 #include "radarslam/io/trajectory_files.h"
 #include "shared_data.h"
@@ -116,7 +117,7 @@ TEST(CliOdometry, StepsRecordEveryScanItsPredictionAndTheTruth) {
   const auto rows = readCsv(steps);
   ASSERT_EQ(rows.size(), 41u);  // header + one row per scan
   const std::vector<std::string>& header = rows[0];
-  ASSERT_EQ(header.size(), 23u);
+  ASSERT_EQ(header.size(), 25u);
   auto column = [&header](const std::string& name) {
     const auto it = std::find(header.begin(), header.end(), name);
     EXPECT_NE(it, header.end()) << name;
@@ -126,7 +127,18 @@ TEST(CliOdometry, StepsRecordEveryScanItsPredictionAndTheTruth) {
                     pdy = column("pred_dy_m"), edx = column("est_dx_m"), edy = column("est_dy_m"),
                     tdx = column("true_dx_m"), tdy = column("true_dy_m"), err = column("est_error_m"),
                     outside = column("true_outside_radius"), edyaw = column("est_dyaw_deg"),
-                    tdyaw = column("true_dyaw_deg");
+                    tdyaw = column("true_dyaw_deg"), chi2 = column("prior_chi2"),
+                    applied = column("prior_applied");
+  // The motion prior: weighed once the prediction's error is measured (10 deviations), applied only
+  // within its chi^2 gate.
+  std::size_t weighed = 0;
+  for (std::size_t i = 2; i < rows.size(); ++i) {
+    const double c = std::stod(rows[i][chi2]);
+    weighed += c >= 0;
+    if (rows[i][applied] == "1") EXPECT_LE(c, radarslam::RefineParams{}.motion_prior_chi2) << "row " << i;
+    if (c < 0) EXPECT_EQ(rows[i][applied], "0") << "row " << i;
+  }
+  EXPECT_GT(weighed, 20u);
   EXPECT_EQ(rows[1][status], "initialised");
   EXPECT_EQ(rows[1][tdx], "");  // no previous scan: no true motion
   const radarslam::Trajectory t = radarslam::readTumTrajectory(traj);

@@ -76,5 +76,23 @@ TEST(MotionPriorBound, NonFiniteDeviationsAreIgnored) {
   EXPECT_EQ(b.samples(), 0);
 }
 
+TEST(MotionPriorBound, CovarianceIsTheSecondMomentOfTheDeviationsOnceEnoughAreKnown) {
+  MatchParams p;
+  p.adaptive_min_samples = 3;
+  MotionPriorBound b(p, 0.25, 12.5);
+  b.addDeviation({2, 0, 0}, {2.3, 0, 0.01});    // D = (0.3, 0, 0.01)
+  b.addDeviation({0, 0, 0}, {0, -0.4, -0.02});  // D = (0, -0.4, -0.02)
+  EXPECT_TRUE(b.covariance().isZero()) << "2 of 3 samples: no prior yet";
+  b.addDeviation({1, 0, M_PI / 2}, {1, 1, M_PI / 2});  // D = (1, 0, 0) in the predicted frame
+  const Eigen::Matrix3d c = b.covariance();
+  EXPECT_NEAR(c(0, 0), (0.09 + 1.0) / 3, 1e-12);
+  EXPECT_NEAR(c(1, 1), 0.16 / 3, 1e-12);
+  EXPECT_NEAR(c(2, 2), (1e-4 + 4e-4) / 3, 1e-12);
+  EXPECT_NEAR(c(0, 2), 0.003 / 3, 1e-12);
+  EXPECT_NEAR(c(1, 2), 0.008 / 3, 1e-12);
+  EXPECT_NEAR(c(0, 1), 0.0, 1e-12);
+  EXPECT_TRUE(c.isApprox(c.transpose()));
+}
+
 }  // namespace
 }  // namespace radarslam

@@ -51,6 +51,21 @@ TEST(OdometryParams, DopplerSectionIsReadAndRangeChecked) {
   }
 }
 
+TEST(OdometryParams, MotionPriorIsReadAndItsGateRangeChecked) {
+  OdometryParams p;
+  EXPECT_TRUE(p.refine.motion_prior);
+  const YamlParams y =
+      YamlParams::fromText("odometry: {refine: {motion_prior: false, motion_prior_chi2: 7.81}}\n");
+  loadParams(y, p);
+  y.rejectUnknownKeys();
+  EXPECT_FALSE(p.refine.motion_prior);
+  EXPECT_DOUBLE_EQ(p.refine.motion_prior_chi2, 7.81);
+  EXPECT_THROW(loadParams(YamlParams::fromText("odometry: {refine: {motion_prior_chi2: 0}}\n"), p),
+               InputError);
+  EXPECT_THROW(loadParams(YamlParams::fromText("odometry: {refine: {motion_prior: maybe}}\n"), p),
+               InputError);
+}
+
 TEST(OdometryParams, EveryShippedConfigLoads) {
   int n = 0;
   for (const char* name : {"oxford", "mulran", "boreas", "radiate", "sim_radar"}) {

@@ -15,7 +15,14 @@ void MotionPriorBound::addDeviation(const mrpt::math::TPose2D& predicted,
   sum_t2_ += d.x * d.x + d.y * d.y;
   const double phi = std::remainder(d.phi, 2.0 * M_PI);
   sum_phi2_ += phi * phi;
+  const Eigen::Vector3d v(d.x, d.y, phi);
+  sum_dd_ += v * v.transpose();
   ++n_;
+}
+
+Eigen::Matrix3d MotionPriorBound::covariance() const {
+  if (n_ < params_.adaptive_min_samples) return Eigen::Matrix3d::Zero();
+  return sum_dd_ / static_cast<double>(n_);
 }
 
 double MotionPriorBound::sigmaTranslation() const { return n_ > 0 ? std::sqrt(sum_t2_ / n_) : 0.0; }

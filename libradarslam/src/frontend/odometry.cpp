@@ -351,6 +351,13 @@ struct RadarOdometry::Impl {
     auto currentVelocity = [&](const BodyVelocity& pair) {
       return accel ? blend(pair, velocity, -0.5) : pair;
     };
+    // The motion model as a prior on eq. (4) (ours, pose_refiner.h): the constant-velocity
+    // prediction with its measured error's covariance, grown like the search radius with the
+    // frames lost since the last estimate. Not when the model has no measured error yet (start,
+    // data gap, wide radius) or the scan was re-matched wide (the motion just left the model).
+    PosePrior motion_prior{prior, bound.covariance() * (1.0 + lost_count)};
+    const bool use_prior = params.refine.motion_prior && predicted && !step.widened &&
+                           bound.samples() >= params.matching.adaptive_min_samples;
     auto refine = [&](const std::vector<Observation>& obs) {  // eq. (4), with compensation passes
       const int passes = mc ? std::max(1, params.tracking.compensation_passes) : 1;
       for (int pass = 0; pass < passes; ++pass) {
@@ -364,7 +371,11 @@ struct RadarOdometry::Impl {
           c[i].ref = keyframe.features.xy[obs[i].ref_index];
           if (!keyframe.structure.empty()) shapes.push_back(keyframe.structure[obs[i].ref_index]);
         }
-        T = refinePose(c, T, params.refine, shapes).pose;
+        const RefineResult refined =
+            refinePose(c, T, params.refine, shapes, use_prior ? &motion_prior : nullptr);
+        T = refined.pose;
+        step.prior_chi2 = refined.prior_chi2;
+        step.prior_applied = refined.prior_applied;
         v = twistFromDelta((keyframe.pose + T) - last_pose, dt);
       }
     };

@@ -60,6 +60,8 @@ void loadParams(const YamlParams& yaml, OdometryParams& p) {
   r.get("range_sigma_m", p.refine.range_sigma_m, Range::closed(0, 10));
   r.get("structure_information", p.refine.structure.enabled);
   r.get("beam_blur_tolerance_deg", p.refine.structure.beam_blur_tolerance_deg, Range::closed(0, 90));
+  r.get("motion_prior", p.refine.motion_prior);
+  r.get("motion_prior_chi2", p.refine.motion_prior_chi2, Range::above(0, 1e6));
 
   const YamlParams k = odo.section("keyframes");
   k.get("max_translation_m", p.keyframes.max_translation_m, Range::above(0, 1000));

@@ -15,6 +15,8 @@
 // (1 + n) (a velocity random walk).
 #include <mrpt/math/TPose2D.h>
 
+#include <Eigen/Core>
+
 #include "radarslam/frontend/radius_matcher.h"
 
 namespace radarslam {
@@ -35,6 +37,10 @@ class MotionPriorBound {
   int samples() const { return n_; }
   double sigmaTranslation() const;  ///< m
   double sigmaRotation() const;     ///< rad
+  /// Second moment of D (x, y in the prediction's frame, phi), i.e. the prediction error's
+  /// covariance about zero: the motion model's prior on the next estimate (pose_refiner.h). Zero
+  /// until adaptive_min_samples deviations are known.
+  Eigen::Matrix3d covariance() const;
 
  private:
   MatchParams params_;
@@ -42,6 +48,7 @@ class MotionPriorBound {
   double max_radius_m_;
   int n_ = 0;
   double sum_t2_ = 0.0, sum_phi2_ = 0.0;
+  Eigen::Matrix3d sum_dd_ = Eigen::Matrix3d::Zero();
 };
 
 }  // namespace radarslam

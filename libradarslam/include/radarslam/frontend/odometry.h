@@ -67,6 +67,11 @@ struct OdometryStep {
   /// The estimate left the constant-velocity prediction by more than a road vehicle can
   /// (TrackingParams::max_acceleration_mps2): treated as a tracking loss (status Lost).
   bool implausible = false;
+  /// The motion model's prior in eq. (4) (pose_refiner.h): its innovation chi^2 at the last
+  /// refinement (-1: not weighed: no measured prediction error yet, or re-matched wide) and
+  /// whether it passed its gate.
+  double prior_chi2 = -1.0;
+  bool prior_applied = false;
   bool new_keyframe = false;
   /// When new_keyframe: the new keyframe's keypoints in its sensor frame at the reference time
   /// (motion compensated) - the observations local mapping turns into map points - and, when it
