@@ -135,8 +135,12 @@ TEST(CliOdometry, StepsRecordEveryScanItsPredictionAndTheTruth) {
   for (std::size_t i = 2; i < rows.size(); ++i) {
     const double c = std::stod(rows[i][chi2]);
     weighed += c >= 0;
-    if (rows[i][applied] == "1") EXPECT_LE(c, radarslam::RefineParams{}.motion_prior_chi2) << "row " << i;
-    if (c < 0) EXPECT_EQ(rows[i][applied], "0") << "row " << i;
+    if (rows[i][applied] == "1") {
+      EXPECT_LE(c, radarslam::RefineParams{}.motion_prior_chi2) << "row " << i;
+    }
+    if (c < 0) {
+      EXPECT_EQ(rows[i][applied], "0") << "row " << i;
+    }
   }
   EXPECT_GT(weighed, 20u);
   EXPECT_EQ(rows[1][status], "initialised");
