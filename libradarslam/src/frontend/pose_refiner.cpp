@@ -47,8 +47,11 @@ struct Solution {
 };
 
 /// Iteratively re-weighted Gauss-Newton from (x, y, th); `sigma2` scales the prior (0: none).
+/// `costs`: also evaluate data_cost and dof_sum at the solution (one more pass over the matches,
+/// needed only when a prior is weighed).
 Solution solve(const Correspondences& matches, Solution s, const RefineParams& params,
-               std::span<const Eigen::Matrix2d> shapes, const WeighedPrior& prior, double sigma2) {
+               std::span<const Eigen::Matrix2d> shapes, const WeighedPrior& prior, double sigma2,
+               bool costs) {
   const bool shaped = shapes.size() == matches.size();
   auto accumulate = [&](Eigen::Matrix3d* H, Eigen::Vector3d* b) {
     const double c = std::cos(s.th), sn = std::sin(s.th);
@@ -89,7 +92,7 @@ Solution solve(const Correspondences& matches, Solution s, const RefineParams& p
     s.iterations = it + 1;
     if (delta.head<2>().norm() < 1e-6 && std::abs(delta.z()) < 1e-8) break;
   }
-  accumulate(nullptr, nullptr);  // the costs at the solution
+  if (costs) accumulate(nullptr, nullptr);  // the costs at the solution
   return s;
 }
 }  // namespace
@@ -108,14 +111,15 @@ RefineResult refinePose(const Correspondences& matches, const mrpt::math::TPose2
       weighed.information = llt.solve(Eigen::Matrix3d::Identity());
     }
   }
-  Solution s = solve(matches, {initial.x, initial.y, initial.phi}, params, shapes, {}, 0.0);
+  Solution s =
+      solve(matches, {initial.x, initial.y, initial.phi}, params, shapes, {}, 0.0, weighed.prior != nullptr);
   if (weighed.prior) {
     // The matches' residual variance per degree of freedom (2 per match, 3 taken by the pose): the
     // unit in which the data term above is the log-likelihood times sigma^2.
     const double dof = 2.0 * static_cast<double>(matches.size()) - 3.0;
     const double sigma2 = dof > 0 ? s.dof_sum / dof : 0.0;
     if (sigma2 > 0) {
-      const Solution with = solve(matches, s, params, shapes, weighed, sigma2);
+      const Solution with = solve(matches, s, params, shapes, weighed, sigma2, true);
       // The innovation test: adding the prior raises the minimum of the normalised cost by
       // d^T (Sigma_pred + Sigma_data)^-1 d (d: the data's estimate minus the prediction), which is
       // chi^2(3) distributed when both are right. A larger rise: the motion left the model (a hard
