@@ -5,7 +5,10 @@ Read from the sources, so the table cannot drift from the code: the keys and ran
 loadParams (`section.get("key", field, Range::closed(lo, hi))`, `Range::above` = open below),
 the defaults from the initialisers of the struct fields. SECTIONS below says which struct each
 section variable of each loader fills and where in the YAML files it lives; re-run after adding
-a parameter (`python3 scripts/parameters_doc.py`). Stdlib only.
+a parameter (`python3 scripts/parameters_doc.py`). Stdlib only, but for `--check-config FILE...`
+(python3-yaml): every value of a shipped config file that says it holds the built-in defaults must
+equal them (a test; a drift made `radarslam localize` without its config files skip the map's
+motion compensation).
 """
 import os
 import re
@@ -30,6 +33,7 @@ SECTIONS = [
     ("slam/slam_params.cpp", None, "lm", "LocalMappingParams", ["slam.local_mapping"]),
     ("slam/slam_params.cpp", None, "oe", "OdometryEdgeParams", ["slam.odometry_edges"]),
     ("slam/slam_params.cpp", None, "lc", "LoopClosingParams", ["slam.loop_closure"]),
+    ("slam/slam_params.cpp", None, "kc", "KeyframeCullingParams", ["slam.keyframe_culling"]),
     ("radar/peak_cloud.cpp", None, "yaml", "PeakCloudParams",
      ["slam.loop_closure.peak_cloud", "localization.peak_cloud"]),
     ("loop/m2dp.cpp", None, "yaml", "M2DPParams", ["slam.loop_closure.m2dp", "localization.global.m2dp"]),
@@ -129,9 +133,49 @@ def range_text(expr):
     return ("(" if m.group(1) == "above" else "[") + lo + ", " + hi + "]"
 
 
+def number(text):
+    """A default's C++ literal as a Python value (None when it is not a plain number or bool)."""
+    text = text.strip().rstrip("f").replace("'", "")
+    if text in ("true", "false"):
+        return text == "true"
+    try:
+        return float(text)
+    except ValueError:
+        return None
+
+
+def check_config(path, documented):
+    """Every value of a config file that says it holds the built-in defaults equals them."""
+    import yaml  # python3-yaml (scripts/install-deps.sh)
+    with open(path, encoding="utf-8") as f:
+        data = yaml.safe_load(f)
+    wrong = []
+
+    def walk(node, prefix):
+        for key, value in node.items():
+            dotted = prefix + "." + key if prefix else key
+            if isinstance(value, dict):
+                walk(value, dotted)
+                continue
+            if dotted not in documented:
+                wrong.append("%s: no documented default (not read by any loader?)" % dotted)
+                continue
+            expected = number(documented[dotted])
+            if expected is None:
+                continue  # a string, an enum, a list: compared by the C++ tests where they matter
+            got = value if isinstance(value, bool) else float(value)
+            if got != expected:
+                wrong.append("%s: %s in the file, %s built in" % (dotted, value, documented[dotted]))
+    walk(data, "")
+    for w in wrong:
+        print("%s: %s" % (os.path.relpath(path, ROOT), w))
+    return not wrong
+
+
 def main():
     defaults = struct_defaults()
     by_file = {title: [] for title, _ in FILES}
+    documented = {}  # dotted YAML key -> default's C++ text
     for src, func, var, struct, paths in SECTIONS:
         body = function_body(read(os.path.join(SRC, src)), func)
         rows = []
@@ -153,6 +197,8 @@ def main():
             if default.startswith("static_cast"):
                 default = "?"
             comment = re.sub(r";?\s*valid .*$", "", comment).strip()  # the range is its own column
+            for p in paths:
+                documented[key if p == "(top level)" else p + "." + key] = default
             rows.append((key, default.rstrip("f") if re.match(r"^[\d.e+-]+f$", default) else default, rng, comment))
         if not rows:
             continue
@@ -195,6 +241,8 @@ def main():
             for key, default, rng, comment in rows:
                 out.append("| `%s` | %s | %s | %s |" % (key, default.replace("|", "\\|"), rng, comment.replace("|", "\\|")))
             out.append("")
+    if len(sys.argv) > 2 and sys.argv[1] == "--check-config":
+        sys.exit(0 if all([check_config(p, documented) for p in sys.argv[2:]]) else 1)
     text = "\n".join(out)
     target = os.path.join(ROOT, "docs", "parameters.md")
     if len(sys.argv) > 1 and sys.argv[1] == "--check":

@@ -47,8 +47,10 @@ struct LocalizerParams {
   /// A map whose keyframe clouds are raw sweeps (MapMetadata::clouds_motion_compensated false:
   /// map-synth) is compensated at start-up assuming this sweep period (reloc/map_motion.h); 0: used
   /// as stored. Maps of compensated clouds (radarslam map) are always used as stored: compensating
-  /// them again moved every point by twice its motion (docs/localization.md).
-  double map_sweep_period_s = 0;  ///< valid [0, 1000000]
+  /// them again moved every point by twice its motion (docs/localization.md). 0.25 s: the 4 Hz of
+  /// every Navtech sensor the readers accept (until 2026-12-07 the built-in value was 0, unlike
+  /// config/localization.yaml: without its config files a map-synth map was used uncompensated).
+  double map_sweep_period_s = 0.25;  ///< valid [0, 1000000]
   /// A global fix is reported only when this many consecutive scans gave fixes that agree through
   /// the odometry (perceptual aliasing: similar streets verify now and then; measured in
   /// docs/localization.md). 1 = report the first fix.
