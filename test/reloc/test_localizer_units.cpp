@@ -105,6 +105,110 @@ TEST_F(Reloc, LossIsDetectedWhenTheScanIsFromElsewhere) {
   EXPECT_FALSE(off.accepted && std::hypot(off.icp.pose.x - 100, off.icp.pose.y) > 1.0);
 }
 
+// The map twisted by `twist` rad about (cx, 0) for the keyframes with |x - cx| <= half_m: a stretch
+// whose keyframes agree with each other but not with the map around them (a loop correction
+// concentrated between keyframes).
+KeyframeMap twistedStretch(const KeyframeMap& map, double cx, double half_m, double twist) {
+  KeyframeMap bent = map;
+  const mrpt::poses::CPose2D about(cx, 0, 0), turn(0, 0, twist);
+  for (Keyframe& k : bent.keyframes)
+    if (std::abs(k.pose.x - cx) <= half_m)
+      k.pose = (about + turn + (mrpt::poses::CPose2D(-cx, 0, 0) + mrpt::poses::CPose2D(k.pose))).asTPose();
+  return bent;
+}
+
+TEST_F(Reloc, AMapThatDisagreesWithItselfIsSeenFromTheAnchorsOwnCloud) {
+  // 50 m of the map (x 150..200) turned by 3 deg about its middle: the submap around x = 176
+  // (radius 60 m) is mostly untwisted, and the registration from the true pose follows those
+  // keyframes, so the pose relative to the nearest keyframe (what a client uses) is 3 deg off.
+  // Check (i) registers the scan against the anchor keyframe's cloud as well (twisted): the two
+  // differ far beyond that alignment's covariance, and it holds the right pose relative to the
+  // anchor. The anchor's own cloud agrees with its neighbours (all twisted within 20 m).
+  const double twist = 3 * M_PI / 180;
+  const KeyframeMap bent = twistedStretch(*map_, 175, 25, twist);
+  const mrpt::math::TPose2D truth{176.0, 1.0, 0.02};
+  const auto cloud = world_->scan(truth, 4242);
+  MapTracker tracker(bent);
+  const TrackResult r = tracker.track(cloud, truth);
+  ASSERT_GE(r.anchor, 0);
+  EXPECT_TRUE(r.accepted) << r.reason;
+  EXPECT_TRUE(r.map_inconsistent) << "chi2 " << r.anchor_chi2;
+  EXPECT_GT(r.anchor_chi2, MapTrackerParams{}.rival_chi2);
+  // Relative to the anchor keyframe: its true pose is the untwisted map's.
+  const auto k = static_cast<std::size_t>(r.anchor);
+  const mrpt::poses::CPose2D true_rel =
+      mrpt::poses::CPose2D(truth) - mrpt::poses::CPose2D(map_->keyframes[k].pose);
+  auto relErrors = [&](const mrpt::math::TPose2D& est) {
+    const mrpt::poses::CPose2D rel = mrpt::poses::CPose2D(est) - mrpt::poses::CPose2D(bent.keyframes[k].pose);
+    return std::make_pair(std::hypot(rel.x() - true_rel.x(), rel.y() - true_rel.y()),
+                          deg(rel.phi() - true_rel.phi()));
+  };
+  const auto [submap_m, submap_deg] = relErrors(r.icp.pose);
+  const auto [anchor_m, anchor_deg] = relErrors(r.anchor_alignment.pose);
+  EXPECT_GT(submap_deg, 1.5) << "the submap's majority is untwisted";
+  EXPECT_LT(anchor_m, 0.2);
+  EXPECT_LT(anchor_deg, 0.3);
+  (void)submap_m;
+
+  // The untwisted map agrees with itself at the same place.
+  MapTracker straight(*map_);
+  const TrackResult s = straight.track(cloud, truth);
+  EXPECT_TRUE(s.accepted) << s.reason;
+  EXPECT_FALSE(s.map_inconsistent);
+  EXPECT_GE(s.anchor_chi2, 0.0) << "evaluated";
+  EXPECT_LT(s.anchor_chi2, MapTrackerParams{}.rival_chi2);
+
+  EXPECT_FALSE(s.anchor_alignment_differs);
+  EXPECT_GE(s.anchor_keyframe_chi2, 0.0) << "evaluated";
+  EXPECT_LT(s.anchor_keyframe_chi2, MapTrackerParams{}.rival_chi2);
+  EXPECT_TRUE(r.anchor_alignment_differs);
+  EXPECT_LT(r.anchor_keyframe_chi2, MapTrackerParams{}.rival_chi2)
+      << "inside the stretch its neighbours agree";
+  EXPECT_GT(r.map_disagreement(2, 2), std::pow(2 * M_PI / 180, 2)) << "the twist, as a heading variance";
+
+  // Off.
+  MapTrackerParams off;
+  off.anchor_path_m = 0;
+  MapTracker unchecked(bent, off);
+  const TrackResult u = unchecked.track(cloud, truth);
+  EXPECT_FALSE(u.map_inconsistent);
+  EXPECT_LT(u.anchor_chi2, 0.0) << "not evaluated";
+}
+
+TEST_F(Reloc, AKeyframeOutOfPlaceAmongItsNeighboursIsSeenFromItsOwnCloud) {
+  // One keyframe stored 0.8 m and 2 deg away from where its cloud was seen (an odometry that
+  // stalled for a scan while mapping): the scan's registration follows the many keyframes around
+  // it, but relative to that keyframe (the nearest, the one a client relates the pose to) the pose
+  // is 0.8 m / 2 deg off. Both tests see it: the keyframe's own cloud registered against its
+  // neighbours, and the scan registered against that cloud alone, which gives the pose relative
+  // to it.
+  KeyframeMap moved = *map_;
+  const std::size_t k = 60;  // at x = 120 m
+  moved.keyframes[k].pose.y += 0.8;
+  moved.keyframes[k].pose.phi += 2 * M_PI / 180;
+  const mrpt::math::TPose2D truth{120.1, 0.3, 0.0};
+  MapTracker tracker(moved);
+  const TrackResult r = tracker.track(world_->scan(truth, 777), truth);
+  ASSERT_EQ(r.anchor, static_cast<long>(k));
+  EXPECT_TRUE(r.accepted) << r.reason;
+  EXPECT_LT(std::hypot(r.icp.pose.x - truth.x, r.icp.pose.y - truth.y), 0.1) << "the neighbours decide";
+  EXPECT_GT(r.anchor_keyframe_chi2, MapTrackerParams{}.rival_chi2);
+  EXPECT_TRUE(r.anchor_alignment_differs);
+  EXPECT_TRUE(r.map_inconsistent);
+  const mrpt::poses::CPose2D rel =
+      mrpt::poses::CPose2D(r.anchor_alignment.pose) - mrpt::poses::CPose2D(moved.keyframes[k].pose);
+  const mrpt::poses::CPose2D true_rel =
+      mrpt::poses::CPose2D(truth) - mrpt::poses::CPose2D(map_->keyframes[k].pose);
+  EXPECT_LT(std::hypot(rel.x() - true_rel.x(), rel.y() - true_rel.y()), 0.15) << "relative to the keyframe";
+  EXPECT_LT(deg(rel.phi() - true_rel.phi()), 0.3);
+  EXPECT_GT(std::sqrt(r.map_disagreement(1, 1)), 0.8) << "the keyframe's offset, as a variance";
+  // In place, it agrees.
+  MapTracker straight(*map_);
+  const TrackResult s = straight.track(world_->scan(truth, 777), truth);
+  EXPECT_FALSE(s.map_inconsistent);
+  EXPECT_LT(s.anchor_keyframe_chi2, MapTrackerParams{}.rival_chi2);
+}
+
 TEST(RelocCovariance, CorridorIsUncertainAlongTheWalls) {
   // Two long parallel walls: the position along them is unobservable, across them well known.
   std::vector<Eigen::Vector2d> pts;

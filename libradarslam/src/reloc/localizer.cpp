@@ -257,6 +257,13 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
         fusePoses(predicted, predicted_cov, r.pose, r.covariance, fused, fused_cov);
         report(fused, fused_cov, LocalizationStatus::Degraded, tr.anchor);
         res.check = tr.reacquisition_ambiguous ? "reacquisition" : "degenerate";
+      } else if (tr.map_inconsistent) {
+        // Check (i): the map disagrees with itself around the anchor. The client relates the pose
+        // to the anchor, so where the scan's alignment against the anchor's neighbourhood differs
+        // that one is reported; either way as uncertain as the map disagrees.
+        const IcpResult& a = tr.anchor_alignment_differs ? tr.anchor_alignment : r;
+        report(a.pose, a.covariance + tr.map_disagreement, LocalizationStatus::Degraded, tr.anchor);
+        res.check = "map";
       } else if (const MapCoverage cover = mapCoverage(m.map, r.pose, ip); cover.outside) {
         // Check (f): outside the mapped path; relative to the map as uncertain as the odometry
         // over the distance from the nearest keyframe.

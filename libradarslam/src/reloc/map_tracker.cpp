@@ -23,6 +23,7 @@ void loadParams(const YamlParams& yaml, MapTrackerParams& p) {
   yaml.get("max_position_sigma_m", p.max_position_sigma_m, Range::above(0, 1000));
   yaml.get("ambiguity_fit_ratio", p.ambiguity_fit_ratio, Range::closed(0, 1));
   yaml.get("reacquisition_starts", p.reacquisition_starts, Range::closed(0, 10));
+  yaml.get("anchor_path_m", p.anchor_path_m, Range::closed(0, 10000));
   p.min_inliers = static_cast<std::size_t>(min_inliers);
   loadParams(yaml.section("submap"), p.submap);
   loadParams(yaml.section("icp"), p.icp);
@@ -134,6 +135,61 @@ Eigen::Matrix3d MapTracker::reacquire(const std::vector<Eigen::Vector2d>& thinne
                     : Eigen::Matrix3d::Zero();
 }
 
+const MapTracker::KeyframeAgreement& MapTracker::keyframeAgreement(std::size_t k) {
+  if (agreement_.size() != map_.keyframes.size()) agreement_.assign(map_.keyframes.size(), {});
+  KeyframeAgreement& a = agreement_[k];
+  if (a.evaluated) return a;
+  a.evaluated = true;
+  std::vector<char> others = connectivity_.within(k, params_.anchor_path_m);
+  others[k] = 0;
+  const Keyframe& kf = map_.keyframes[k];
+  const LocalSubmap neighbours = LocalSubmap::build(map_, kf.pose.x, kf.pose.y, params_.submap, &others);
+  if (neighbours.keyframes() == 0) return a;
+  std::vector<RadarPoint> cloud(kf.points.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    cloud[i].x = kf.points[i].x;
+    cloud[i].y = kf.points[i].y;
+    cloud[i].power = kf.points[i].power;
+  }
+  const IcpResult r =
+      neighbours.registerThinned(LocalSubmap::thinScan(cloud, params_.icp), kf.pose, params_.icp);
+  if (r.inliers < params_.min_inliers) return a;
+  a.offset = Eigen::Vector3d(r.pose.x - kf.pose.x, r.pose.y - kf.pose.y,
+                             std::remainder(r.pose.phi - kf.pose.phi, 2 * M_PI));
+  a.chi2 = a.offset.dot(r.covariance.ldlt().solve(a.offset));
+  return a;
+}
+
+void MapTracker::checkAnchor(const std::vector<Eigen::Vector2d>& thinned, TrackResult& out) {
+  if (params_.anchor_path_m <= 0 || out.anchor < 0 || out.icp.inliers < params_.min_inliers) return;
+  const KeyframeAgreement& kf = keyframeAgreement(static_cast<std::size_t>(out.anchor));
+  out.anchor_keyframe_chi2 = kf.chi2;
+  if (kf.chi2 > params_.rival_chi2) {
+    out.map_inconsistent = true;
+    out.map_disagreement += kf.offset * kf.offset.transpose();
+  }
+  // The scan's test: against the anchor keyframe's own cloud.
+  if (anchor_submap_for_ != out.anchor) {
+    std::vector<char> only(map_.keyframes.size(), 0);
+    only[static_cast<std::size_t>(out.anchor)] = 1;
+    const auto& pose = map_.keyframes[static_cast<std::size_t>(out.anchor)].pose;
+    anchor_submap_ = LocalSubmap::build(map_, pose.x, pose.y, params_.submap, &only);
+    anchor_submap_for_ = out.anchor;
+  }
+  // The whole submap is the anchor: nothing else to disagree with.
+  if (anchor_submap_->keyframes() == 0 || anchor_submap_->keyframes() >= submap_->keyframes()) return;
+  out.anchor_alignment = anchor_submap_->registerThinned(thinned, out.icp.pose, params_.icp);
+  const IcpResult& a = out.anchor_alignment;
+  if (a.inliers < params_.min_inliers) return;  // too little of the scan there to tell
+  const Eigen::Vector3d d(a.pose.x - out.icp.pose.x, a.pose.y - out.icp.pose.y,
+                          std::remainder(a.pose.phi - out.icp.pose.phi, 2 * M_PI));
+  out.anchor_chi2 = d.dot(a.covariance.ldlt().solve(d));
+  if (out.anchor_chi2 > params_.rival_chi2) {
+    out.map_inconsistent = out.anchor_alignment_differs = true;
+    out.map_disagreement += d * d.transpose();
+  }
+}
+
 TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::math::TPose2D& predicted,
                               long anchor, const Eigen::Matrix3d* predicted_cov) {
   TrackResult out;
@@ -164,6 +220,7 @@ TrackResult MapTracker::track(std::span<const RadarPoint> cloud, const mrpt::mat
   out.icp.covariance += spread;
   const IcpResult& r = out.icp;
   out.anchor = nearestKeyframe(map_, submap_->keyframeIndices(), r.pose.x, r.pose.y);
+  checkAnchor(thinned, out);
   if (other_) {  // a second copy of this place: does it explain the scan elsewhere as well?
     out.alternative = other_->registerThinned(thinned, predicted, params_.icp);
     const IcpResult& a = out.alternative;

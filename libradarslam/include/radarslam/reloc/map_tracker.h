@@ -55,6 +55,19 @@ struct MapTrackerParams {
   /// Not read from YAML: the localiser sets it to the chi^2(3) quantile of
   /// integrity.chi2_probability, the bound of its other checks (default: that of 0.999).
   double rival_chi2 = 16.266;
+  /// Check (i), the map's agreement with itself around the anchor (the keyframe nearest to the
+  /// registered pose, to which a client relates the pose: the Boreas-style output). A map that
+  /// bends or folds between keyframes (a loop correction concentrated there, an odometry that
+  /// stalled in a turn while the vehicle drove on) holds keyframes whose clouds do not sit where
+  /// the rest of the submap says. Two tests, each failing when the difference d of two alignments
+  /// exceeds the second alignment's own covariance (d^T Sigma^-1 d > rival_chi2):
+  ///  - the scan, registered (from the tracked alignment) against the anchor keyframe's cloud
+  ///    alone: that alignment gives the pose relative to the anchor, and uses a subset of the
+  ///    submap's points, so its covariance bounds the variance of the difference;
+  ///  - the anchor keyframe's own cloud, registered from its map pose against the other keyframes
+  ///    within this path distance of it (reloc/map_connectivity.h; once per keyframe, cached).
+  /// Either failing makes TrackResult::map_inconsistent. 0 = off; valid [0, 10000].
+  double anchor_path_m = 20.0;
 
   /// The ICP's heading capture range: its correspondence gate (icp.max_correspondence_m) seen at
   /// the submap's radius, in radians. Two headings closer than this converge to one alignment.
@@ -86,6 +99,17 @@ struct TrackResult {
   /// ... and another alignment within the prediction fitted almost as well (the scan is then
   /// `degenerate`, its covariance holding the alignments' spread).
   bool reacquisition_ambiguous = false;
+  /// Check (i) (MapTrackerParams::anchor_path_m): d^T Sigma^-1 d of the scan's alignment against
+  /// the anchor keyframe's cloud to the submap's, and of the anchor keyframe's own cloud registered
+  /// against its neighbours to its map pose (-1 when not evaluated).
+  double anchor_chi2 = -1, anchor_keyframe_chi2 = -1;
+  /// ... either beyond rival_chi2: the map disagrees with itself here (not a rejection: the caller
+  /// reports the pose with map_disagreement added to its covariance, and where the scan's test
+  /// failed, the anchor's alignment).
+  bool map_inconsistent = false;
+  bool anchor_alignment_differs = false;                       ///< the scan's test failed
+  Eigen::Matrix3d map_disagreement = Eigen::Matrix3d::Zero();  ///< sum of d d^T of the failed tests
+  IcpResult anchor_alignment;  ///< the scan's alignment against the anchor keyframe's cloud
 };
 
 /// Two registrations of one scan are different alignments: farther apart than the inlier gate, or
@@ -110,6 +134,19 @@ class MapTracker {
 
  private:
   void rebuild(const mrpt::math::TPose2D& predicted, long anchor);
+  /// Check (i): the anchor keyframe against its neighbours (keyframeAgreement), and `thinned`
+  /// registered against the anchor keyframe's cloud from out.icp's pose; fills out.anchor_chi2,
+  /// anchor_keyframe_chi2, anchor_alignment, map_inconsistent, anchor_alignment_differs and
+  /// map_disagreement.
+  void checkAnchor(const std::vector<Eigen::Vector2d>& thinned, TrackResult& out);
+  /// Check (i), the map's side: keyframe k's cloud against the other keyframes within
+  /// anchor_path_m of it; the offset of its alignment from its map pose and that offset's chi^2.
+  struct KeyframeAgreement {
+    bool evaluated = false;
+    double chi2 = -1;  ///< -1: too few points to tell
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  };
+  const KeyframeAgreement& keyframeAgreement(std::size_t k);
   bool checksProfile() const { return params_.icp.profile_shift_m > 0; }  ///< check (g) on
   /// Check (h): registers the thinned scan from further starts along the prediction's wide axes;
   /// keeps the most probable alignment given the prediction in out.icp, flags an ambiguity and returns the
@@ -123,6 +160,9 @@ class MapTracker {
   std::optional<LocalSubmap> submap_;
   std::optional<LocalSubmap> other_;  ///< keyframes near but beyond max_path_m: another copy
   long built_for_anchor_ = -1;
+  std::optional<LocalSubmap> anchor_submap_;  ///< check (i): the anchor keyframe's cloud...
+  long anchor_submap_for_ = -1;               ///< ... of this keyframe
+  std::vector<KeyframeAgreement> agreement_;  ///< per keyframe, filled on first use
 };
 
 }  // namespace radarslam
