@@ -127,6 +127,18 @@ std::vector<std::size_t> checkTrusted(const std::vector<std::vector<std::string>
   return good;
 }
 
+/// config/oxford.yaml and config/localization.yaml in one file at `path`, with the localisation
+/// key `zeroed` (when not empty) set to 0.
+void writeShippedConfig(const fs::path& path, const std::string& zeroed) {
+  std::string loc = readFileBytes(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "localization.yaml");
+  if (!zeroed.empty()) {
+    const auto at = loc.find(zeroed + ": ");
+    ASSERT_NE(at, std::string::npos) << zeroed;
+    loc.replace(at, loc.find('\n', at) - at, zeroed + ": 0");
+  }
+  std::ofstream(path) << readFileBytes(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml") << loc;
+}
+
 TEST_F(LocalizeIntegrity, KidnappedVehicleIsNeverTrustedWhileWrong) {
   const fs::path d = tmp_->path();
   ASSERT_TRUE(runs("map-synth '" + t1_->string() + "' -o '" + (d / "map").string() + "'", d));
@@ -235,15 +247,7 @@ TEST_F(LocalizeIntegrity, MapWithTheSameStreetTwiceIsTrackedOnOneCopyAndReported
   saveMap(map, d / "map_twice");
 
   const fs::path config = d / "twice.yaml";
-  {
-    std::string loc = readFileBytes(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "localization.yaml");
-    if (std::getenv("RADARSLAM_TEST_NO_COPIES")) {
-      const auto at = loc.find("max_path_m: ");
-      ASSERT_NE(at, std::string::npos);
-      loc.replace(at, loc.find('\n', at) - at, "max_path_m: 0");
-    }
-    std::ofstream(config) << readFileBytes(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml") << loc;
-  }
+  writeShippedConfig(config, std::getenv("RADARSLAM_TEST_NO_COPIES") ? "max_path_m" : "");
   std::vector<std::vector<std::string>> errors, side;
   localize(d / "map_twice", *t2_, "twice", kScans, errors, side, config.string());
   std::size_t trusted_scans = 0;
@@ -283,15 +287,7 @@ TEST_F(LocalizeIntegrity, AMapThatDisagreesWithItselfIsNotTrustedWhereItDisagree
   ASSERT_GE(twisted, 5u);
   saveMap(map, d / "map_twisted");
   const fs::path config = d / "twisted.yaml";
-  {
-    std::string loc = readFileBytes(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "localization.yaml");
-    if (std::getenv("RADARSLAM_TEST_NO_MAP_CHECK")) {
-      const auto at = loc.find("anchor_path_m: ");
-      ASSERT_NE(at, std::string::npos);
-      loc.replace(at, loc.find('\n', at) - at, "anchor_path_m: 0");
-    }
-    std::ofstream(config) << readFileBytes(fs::path(RADARSLAM_SOURCE_DIR) / "config" / "oxford.yaml") << loc;
-  }
+  writeShippedConfig(config, std::getenv("RADARSLAM_TEST_NO_MAP_CHECK") ? "anchor_path_m" : "");
   std::vector<std::vector<std::string>> errors, side;
   localize(d / "map_twisted", *t2_, "twisted", kScans, errors, side, config.string());
   std::size_t trusted_scans = 0, flagged = 0;
