@@ -67,7 +67,10 @@ t1=$(date +%s)
   #   to test the file protocol's crash safety; the same save code runs here in the CliMap tests.
   # - LocalizeCli.InASlamMapTheCompensatedCloudsAreUsedAsStored: an accuracy test (SLAM map of 130
   #   scans + localisation); its code paths run here in the other LocalizeCli and CliMap tests.
-  heavy='^SlamOnSimulation\.|^LocalizeCli\.InASlamMap|^LocalizeIntegrity\.DriveOutOfTheMapAndBack|^CliKillWrite\.KilledOverwriteLeavesThePreviousOrTheNewMap$'
+  # - LocalizeIntegrity.AMapThatDisagreesWithItselfIsNotTrustedWhereItDisagrees (~125 s here): an
+  #   accuracy test; check (i) runs here in every other localisation test (it is always on) and in
+  #   the unit tests Reloc.AMapThatDisagrees* and Reloc.AKeyframeOutOfPlace*.
+  heavy='^SlamOnSimulation\.|^LocalizeCli\.InASlamMap|^LocalizeIntegrity\.DriveOutOfTheMapAndBack|^LocalizeIntegrity\.AMapThatDisagrees|^CliKillWrite\.KilledOverwriteLeavesThePreviousOrTheNewMap$'
   ctest -j"$jobs" --output-on-failure --timeout 1800 -E "$heavy"
 )
 t2=$(date +%s)
