@@ -11,6 +11,7 @@
 #include "radarslam/core/errors.h"
 #include "radarslam/core/log.h"
 #include "radarslam/core/yaml_params.h"
+#include "radarslam/reloc/submap_icp.h"
 
 namespace radarslam {
 
@@ -25,20 +26,6 @@ void loadParams(const YamlParams& yaml, GlobalLocalizerParams& p) {
   loadParams(yaml.section("m2dp"), p.m2dp);
   loadParams(yaml.section("verifier"), p.verifier);
 }
-
-namespace {
-std::vector<RadarPoint> toRadarPoints(const std::vector<KeyframePoint>& pts) {
-  std::vector<RadarPoint> out;
-  out.reserve(pts.size());
-  for (const auto& p : pts) {
-    RadarPoint r;
-    r.x = p.x, r.y = p.y, r.power = p.power;
-    r.range_m = std::hypot(p.x, p.y);
-    out.push_back(r);
-  }
-  return out;
-}
-}  // namespace
 
 GlobalLocalizer::GlobalLocalizer(const KeyframeMap& map, const GlobalLocalizerParams& params)
     : map_(map), params_(params) {

@@ -259,7 +259,7 @@ LocalizationResult Localizer::process(const CObservationRadarScan& scan) {
         res.check = tr.reacquisition_ambiguous ? "reacquisition" : "degenerate";
       } else if (tr.map_inconsistent) {
         // Check (i): the map disagrees with itself around the anchor. The client relates the pose
-        // to the anchor, so where the scan's alignment against the anchor's neighbourhood differs
+        // to the anchor, so where the scan's alignment against the anchor keyframe's cloud differs
         // that one is reported; either way as uncertain as the map disagrees.
         const IcpResult& a = tr.anchor_alignment_differs ? tr.anchor_alignment : r;
         report(a.pose, a.covariance + tr.map_disagreement, LocalizationStatus::Degraded, tr.anchor);

@@ -10,6 +10,7 @@
 #include "radarslam/core/errors.h"
 #include "radarslam/core/yaml_params.h"
 #include "radarslam/map/keyframe_search.h"
+#include "radarslam/reloc/integrity.h"
 
 namespace radarslam {
 
@@ -46,7 +47,7 @@ bool differentAlignments(const IcpResult& a, const IcpResult& b, const IcpParams
 }
 
 MapTracker::MapTracker(const KeyframeMap& map, const MapTrackerParams& params)
-    : map_(map), params_(forMap(params, map)), connectivity_(map) {}
+    : map_(map), params_(forMap(params, map)), connectivity_(map), agreement_(map.keyframes.size()) {}
 MapTracker::~MapTracker() = default;
 
 void MapTracker::rebuild(const mrpt::math::TPose2D& predicted, long anchor) {
@@ -136,7 +137,6 @@ Eigen::Matrix3d MapTracker::reacquire(const std::vector<Eigen::Vector2d>& thinne
 }
 
 const MapTracker::KeyframeAgreement& MapTracker::keyframeAgreement(std::size_t k) {
-  if (agreement_.size() != map_.keyframes.size()) agreement_.assign(map_.keyframes.size(), {});
   KeyframeAgreement& a = agreement_[k];
   if (a.evaluated) return a;
   a.evaluated = true;
@@ -145,18 +145,11 @@ const MapTracker::KeyframeAgreement& MapTracker::keyframeAgreement(std::size_t k
   const Keyframe& kf = map_.keyframes[k];
   const LocalSubmap neighbours = LocalSubmap::build(map_, kf.pose.x, kf.pose.y, params_.submap, &others);
   if (neighbours.keyframes() == 0) return a;
-  std::vector<RadarPoint> cloud(kf.points.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    cloud[i].x = kf.points[i].x;
-    cloud[i].y = kf.points[i].y;
-    cloud[i].power = kf.points[i].power;
-  }
-  const IcpResult r =
-      neighbours.registerThinned(LocalSubmap::thinScan(cloud, params_.icp), kf.pose, params_.icp);
+  const IcpResult r = neighbours.registerThinned(LocalSubmap::thinScan(toRadarPoints(kf.points), params_.icp),
+                                                 kf.pose, params_.icp);
   if (r.inliers < params_.min_inliers) return a;
-  a.offset = Eigen::Vector3d(r.pose.x - kf.pose.x, r.pose.y - kf.pose.y,
-                             std::remainder(r.pose.phi - kf.pose.phi, 2 * M_PI));
-  a.chi2 = a.offset.dot(r.covariance.ldlt().solve(a.offset));
+  a.offset = poseDifference(kf.pose, r.pose);
+  a.chi2 = mahalanobis2(a.offset, r.covariance);
   return a;
 }
 
@@ -168,7 +161,9 @@ void MapTracker::checkAnchor(const std::vector<Eigen::Vector2d>& thinned, TrackR
     out.map_inconsistent = true;
     out.map_disagreement += kf.offset * kf.offset.transpose();
   }
-  // The scan's test: against the anchor keyframe's own cloud.
+  // The scan's test: against the anchor keyframe's own cloud (nothing else to disagree with when
+  // the submap holds only the anchor).
+  if (submap_->keyframes() <= 1) return;
   if (anchor_submap_for_ != out.anchor) {
     std::vector<char> only(map_.keyframes.size(), 0);
     only[static_cast<std::size_t>(out.anchor)] = 1;
@@ -176,14 +171,11 @@ void MapTracker::checkAnchor(const std::vector<Eigen::Vector2d>& thinned, TrackR
     anchor_submap_ = LocalSubmap::build(map_, pose.x, pose.y, params_.submap, &only);
     anchor_submap_for_ = out.anchor;
   }
-  // The whole submap is the anchor: nothing else to disagree with.
-  if (anchor_submap_->keyframes() == 0 || anchor_submap_->keyframes() >= submap_->keyframes()) return;
   out.anchor_alignment = anchor_submap_->registerThinned(thinned, out.icp.pose, params_.icp);
   const IcpResult& a = out.anchor_alignment;
   if (a.inliers < params_.min_inliers) return;  // too little of the scan there to tell
-  const Eigen::Vector3d d(a.pose.x - out.icp.pose.x, a.pose.y - out.icp.pose.y,
-                          std::remainder(a.pose.phi - out.icp.pose.phi, 2 * M_PI));
-  out.anchor_chi2 = d.dot(a.covariance.ldlt().solve(d));
+  const Eigen::Vector3d d = poseDifference(out.icp.pose, a.pose);
+  out.anchor_chi2 = mahalanobis2(d, a.covariance);
   if (out.anchor_chi2 > params_.rival_chi2) {
     out.map_inconsistent = out.anchor_alignment_differs = true;
     out.map_disagreement += d * d.transpose();

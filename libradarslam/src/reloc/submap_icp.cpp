@@ -81,6 +81,18 @@ std::vector<Vec2> voxelCentroids(const std::vector<Vec2>& pts, double voxel) {
 
 }  // namespace
 
+std::vector<RadarPoint> toRadarPoints(const std::vector<KeyframePoint>& pts) {
+  std::vector<RadarPoint> out;
+  out.reserve(pts.size());
+  for (const auto& p : pts) {
+    RadarPoint r;
+    r.x = p.x, r.y = p.y, r.power = p.power;
+    r.range_m = std::hypot(p.x, p.y);
+    out.push_back(r);
+  }
+  return out;
+}
+
 std::vector<Vec2> LocalSubmap::thinScan(std::span<const RadarPoint> c, const IcpParams& params) {
   const double voxel = params.scan_voxel_m;
   const std::size_t max_points = params.max_scan_points;

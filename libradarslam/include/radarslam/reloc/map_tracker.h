@@ -162,7 +162,8 @@ class MapTracker {
   long built_for_anchor_ = -1;
   std::optional<LocalSubmap> anchor_submap_;  ///< check (i): the anchor keyframe's cloud...
   long anchor_submap_for_ = -1;               ///< ... of this keyframe
-  std::vector<KeyframeAgreement> agreement_;  ///< per keyframe, filled on first use
+  std::vector<KeyframeAgreement>
+      agreement_;  ///< per keyframe (position in map.keyframes), filled on first use
 };
 
 }  // namespace radarslam

@@ -105,6 +105,10 @@ struct IcpResult {
   bool converged = false;
 };
 
+/// A keyframe's stored cloud (sensor frame) as a scan's peak cloud: what the registration and the
+/// global descriptors take (range from the position; no azimuth).
+std::vector<RadarPoint> toRadarPoints(const std::vector<KeyframePoint>& pts);
+
 /// The thinned map-frame points of the keyframes near a centre, with a kd-tree.
 class LocalSubmap {
  public:
