@@ -146,6 +146,8 @@ TEST(CliSimulate, CompareRealReadsTheRadiateFogScans) {
   EXPECT_NE(r.out.find("(18 scans)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("per range band"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("of 32 statistics within x1.5"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("saturation streaks"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(">= 15 codes   real"), std::string::npos) << r.out;
   EXPECT_GT(fs::file_size(png), 10000u);
   EXPECT_EQ(leftOver(tmp.path(), {"cmp.png"}), std::set<std::string>{});
 }
