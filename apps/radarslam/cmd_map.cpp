@@ -329,10 +329,11 @@ int runMap(int argc, char** argv) {
         buf, sizeof buf,
         "  loops          %zu candidates verified: %zu accepted (%zu of them ambiguous places confirmed "
         "by the next keyframes; %zu confirmations held back by a rival placement, %zu withdrawn), "
-        "%zu rejected by verification, %zu removed by the pose graph; %zu graph optimisations\n",
+        "%zu rejected by verification, %zu removed by the pose graph; %zu graph optimisations; "
+        "%zu candidates by proximity where M2DP found none\n",
         stats.loop_candidates, stats.loops_accepted, stats.loops_confirmed, stats.confirmations_held_back,
         stats.confirmations_withdrawn, stats.loops_rejected, stats.loops_rejected_by_graph,
-        stats.graph_optimisations);
+        stats.graph_optimisations, stats.proximity_candidates);
     sum << buf;
     const double n = static_cast<double>(done);
     std::snprintf(

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "graph_optimiser.h"
+#include "loop_proximity.h"
 #include "loop_uncertainty.h"
 #include "radarslam/core/log.h"
 #include "radarslam/core/se2_covariance.h"
@@ -130,6 +131,12 @@ void LoopCloser::process(std::uint64_t id) {
   if ((params_.loop_closing.enabled || !anchored) && descriptors[0].size() > 0) {
     auto candidates =
         anchored ? detector_.query(descriptors, travelled) : map_detector_->query(descriptors, travelled);
+    if (candidates.empty() && gate && lc.proximity_candidates) {
+      std::lock_guard lock(state_.mutex);
+      candidates = proximityCandidates(state_, id, descriptors, lc,
+                                       [&](std::uint64_t m) { return driftBound(m).first; });
+      state_.stats.proximity_candidates += candidates.size();
+    }
     if (chi2_gate && !candidates.empty()) {
       std::lock_guard lock(state_.mutex);
       std::uint64_t first = id;

@@ -46,6 +46,7 @@ void loadParams(const YamlParams& yaml, SlamParams& p) {
   lc.get("loop_information_estimated", p.loop_closing.loop_information_estimated);
   lc.get("accept_slide_loops", p.loop_closing.accept_slide_loops);
   lc.get("ambiguity_within_drift_bound", p.loop_closing.ambiguity_within_drift_bound);
+  lc.get("proximity_candidates", p.loop_closing.proximity_candidates);
   lc.get("confirm_ambiguous_keyframes", p.loop_closing.confirm_ambiguous_keyframes, Range::closed(0, 100));
   if (p.loop_closing.confirm_ambiguous_keyframes == 1)
     lc.fail("confirm_ambiguous_keyframes", "must be 0 (off) or >= 2");

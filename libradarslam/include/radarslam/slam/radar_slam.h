@@ -49,6 +49,8 @@ struct SlamStats {
   /// of them was held back by a rival placement (LoopClosingParams::confirm_ambiguous_keyframes).
   std::size_t loops_confirmed = 0, confirmations_held_back = 0;
   std::size_t confirmations_withdrawn = 0;  ///< confirmed, then contradicted by a unique loop
+  /// Candidates found by proximity where M2DP found none (LoopClosingParams::proximity_candidates).
+  std::size_t proximity_candidates = 0;
   double tracking_ms = 0, local_mapping_ms = 0, loop_closing_ms = 0, graph_ms = 0;  ///< summed CPU wall time
 };
 

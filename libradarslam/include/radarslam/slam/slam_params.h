@@ -99,6 +99,14 @@ struct LoopClosingParams {
   /// unique where the loop can be, and the loop is accepted (then gated like any other). Needs the
   /// drift gate (drift_fraction > 0) and an anchored session.
   bool ambiguity_within_drift_bound = false;
+  /// Where the descriptor search returns no candidate, the keyframes the drift gate allows — driven
+  /// at least detector.exclude_recent_distance_m before the query and, in the current map, within
+  /// verifier.max_translation_m + the drift bound of it (the candidates the gate would let through
+  /// anyway) — are candidates instead, nearest first, verified as M2DP's are (max_verifications;
+  /// ours, as proximity-based loop search in lidar SLAM). The pose graph's uncertainty says where a revisit
+  /// can be; M2DP misses some (a revisit in the opposite direction one lane over, docs/slam.md).
+  /// Needs the drift gate (drift_fraction > 0) and an anchored session.
+  bool proximity_candidates = true;
   /// A place the verifier refused as ambiguous only (every other test passed) becomes a loop once
   /// the best alignments of this many queries, each within confirm_max_gap_keyframes keyframes of
   /// the previous, agree pairwise (chi^2(3) under both loops' covariances, the bound
