@@ -39,6 +39,17 @@ TEST(LoopDetector, ExcludesRecentKeyframesByCountAndDistance) {
   for (const auto& k : db2.query(unit(8, 1), 50.0)) EXPECT_LE(k.keyframe, 4u);
 }
 
+TEST(LoopDetector, IsRecentByCountOrByDistance) {
+  LoopDetectorParams p;
+  p.exclude_recent = 3;
+  p.exclude_recent_distance_m = 10;
+  // Query keyframe 10 at 100 m.
+  EXPECT_TRUE(isRecent(p, 7, 0.0, 10, 100.0));    // one of the last 3 keyframes
+  EXPECT_FALSE(isRecent(p, 6, 0.0, 10, 100.0));   // 4 keyframes and 100 m before
+  EXPECT_TRUE(isRecent(p, 2, 95.0, 10, 100.0));   // only 5 m driven since
+  EXPECT_FALSE(isRecent(p, 2, 90.0, 10, 100.0));  // exactly the distance window
+}
+
 TEST(LoopDetector, ReturnsTopKUnderTheThresholdBestFirst) {
   LoopDetectorParams p;
   p.exclude_recent = 0;

@@ -87,8 +87,7 @@ std::vector<LoopCandidate> LoopDetector::query(std::span<const M2DPDescriptor> d
     m.tree->findNeighbors(result, d.data(), nanoflann::SearchParams());
     for (const auto& [row, dist2] : hits) {
       const std::size_t kf = m.keyframe_of_row[row];
-      if (kf + params_.exclude_recent >= n) continue;  // one of the last exclude_recent keyframes
-      if (travelled_m - m.travelled[kf] < params_.exclude_recent_distance_m) continue;
+      if (isRecent(params_, kf, m.travelled[kf], n, travelled_m)) continue;
       const float dist = std::sqrt(dist2);
       auto [it, inserted] = best.emplace(kf, dist);
       if (!inserted) it->second = std::min(it->second, dist);

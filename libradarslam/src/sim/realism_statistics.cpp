@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "range_bins.h"
+
 namespace radarslam::sim {
 
 const char* const kRealismNames[kRealismStatCount] = {
@@ -43,11 +45,8 @@ RealismStatistics computeRealismStatistics(const CObservationRadarScan& scan, co
   for (const RealismBand& band : params.bands) {
     RealismBandStats st;
     st.band = band;
-    const auto binOf = [&](double r) {
-      return static_cast<std::size_t>(
-          std::clamp(std::ceil((r - scan.range_offset_m) / res), 0.0, static_cast<double>(B)));
-    };
-    const std::size_t b0 = binOf(band.min_m), b1 = binOf(band.max_m);
+    const std::size_t b0 = detail::firstBinAtOrBeyond(scan, band.min_m);
+    const std::size_t b1 = detail::firstBinAtOrBeyond(scan, band.max_m);
     if (b1 <= b0 + 2) {
       out.bands.push_back(st);
       continue;

@@ -4,13 +4,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "range_bins.h"
+
 namespace radarslam::sim {
 
 ScanStatistics computeScanStatistics(const CObservationRadarScan& scan, const StatisticsParams& params) {
   ScanStatistics out;
-  const double res = scan.range_resolution_m;
-  const auto first_bin =
-      static_cast<std::size_t>(std::max(0.0, std::ceil((params.min_range_m - scan.range_offset_m) / res)));
+  const std::size_t first_bin = detail::firstBinAtOrBeyond(scan, params.min_range_m);
   const std::size_t bins = scan.num_bins;
   if (first_bin >= bins || params.bands < 1) return out;
   const std::size_t per_band = (bins - first_bin) / static_cast<std::size_t>(params.bands);

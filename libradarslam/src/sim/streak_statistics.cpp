@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "radarslam/core/errors.h"
+#include "range_bins.h"
 
 namespace radarslam::sim {
 
@@ -13,11 +14,8 @@ StreakFractions computeStreakFractions(const CObservationRadarScan& scan, const 
       2 * static_cast<std::size_t>(p.neighbour_max) >= A)
     throw InputError("StreakParams",
                      "needs 0 <= min_m < max_m and 1 <= neighbour_min <= neighbour_max < azimuths / 2");
-  const auto binOf = [&](double r) {
-    const double b = (r - scan.range_offset_m) / scan.range_resolution_m;
-    return static_cast<std::size_t>(std::clamp(b, 0.0, static_cast<double>(scan.num_bins)));
-  };
-  const std::size_t b0 = binOf(p.min_m), b1 = binOf(p.max_m);
+  const std::size_t b0 = detail::firstBinAtOrBeyond(scan, p.min_m);
+  const std::size_t b1 = detail::firstBinAtOrBeyond(scan, p.max_m);
   StreakFractions out;
   out.azimuths = A;
   if (b1 <= b0) return out;  // the band is beyond the scan's range

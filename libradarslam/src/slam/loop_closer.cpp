@@ -131,8 +131,10 @@ void LoopCloser::process(std::uint64_t id) {
   if ((params_.loop_closing.enabled || !anchored) && descriptors[0].size() > 0) {
     auto candidates =
         anchored ? detector_.query(descriptors, travelled) : map_detector_->query(descriptors, travelled);
+    bool by_proximity = false;  // then the candidates are within the linear bound already
     if (candidates.empty() && gate && lc.proximity_candidates) {
       std::lock_guard lock(state_.mutex);
+      by_proximity = true;
       candidates = proximityCandidates(state_, id, descriptors, lc,
                                        [&](std::uint64_t m) { return driftBound(m).first; });
       state_.stats.proximity_candidates += candidates.size();
@@ -144,7 +146,7 @@ void LoopCloser::process(std::uint64_t id) {
         first = std::min(first, c.keyframe >= state_.session_first ? c.keyframe : state_.anchor_keyframe);
       chain.emplace(state_, first, id, params_.odometry_edges);
     }
-    if (gate) {
+    if (gate && (chi2_gate || !by_proximity)) {
       std::lock_guard lock(state_.mutex);
       const TPose2D& q = state_.keyframes[id].pose;
       std::erase_if(candidates, [&](const LoopCandidate& c) {

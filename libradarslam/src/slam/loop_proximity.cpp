@@ -12,12 +12,10 @@ std::vector<LoopCandidate> proximityCandidates(const SlamState& state, std::uint
                                                const LoopClosingParams& params,
                                                const std::function<double(std::uint64_t)>& bound_m) {
   const SlamKeyframe& q = state.keyframes.at(query);
-  const std::uint64_t recent = std::min<std::uint64_t>(query, params.detector.exclude_recent);
   std::vector<std::pair<double, LoopCandidate>> near;
-  for (std::uint64_t k = state.session_first; k + recent < query; ++k) {
+  for (std::uint64_t k = state.session_first; k < query; ++k) {
     const SlamKeyframe& kf = state.keyframes[k];
-    if (kf.descriptor.size() == 0 ||
-        q.travelled_m - kf.travelled_m < params.detector.exclude_recent_distance_m)
+    if (kf.descriptor.size() == 0 || isRecent(params.detector, k, kf.travelled_m, query, q.travelled_m))
       continue;
     const double d = std::hypot(kf.pose.x - q.pose.x, kf.pose.y - q.pose.y);
     if (d > params.verifier.max_translation_m + bound_m(k)) continue;

@@ -27,6 +27,15 @@ struct LoopDetectorParams {
 /// exclude_recent_distance_m.
 void loadParams(const YamlParams& yaml, LoopDetectorParams& params);
 
+/// True when `keyframe` is too recent to be a loop candidate of the query keyframe number `query`
+/// (insertion order; the query comes after every earlier keyframe): one of the last
+/// exclude_recent keyframes before it, or driven less than exclude_recent_distance_m before it.
+inline bool isRecent(const LoopDetectorParams& params, std::size_t keyframe, double keyframe_travelled_m,
+                     std::size_t query, double query_travelled_m) {
+  return keyframe + params.exclude_recent >= query ||
+         query_travelled_m - keyframe_travelled_m < params.exclude_recent_distance_m;
+}
+
 struct LoopCandidate {
   std::size_t keyframe = 0;  ///< index in insertion order
   float distance = 0;        ///< descriptor distance
