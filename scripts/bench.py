@@ -3,7 +3,7 @@
 list of simulated sequences in config/bench/sequences.yaml, split into train and test.
 
     scripts/bench.py [--split test|train|all] [--reduced] [--only NAME] [--out out/bench]
-                     [--radarslam build/apps/radarslam] [--jobs N] [--check]
+                     [--radarslam build/apps/radarslam] [--check]
 
 --reduced runs each sequence's `ci_scans` (sequences with ci_scans 0 are left out); CI runs
 `--reduced --check --baseline config/bench/baseline_reduced.json`. Every run reports (as

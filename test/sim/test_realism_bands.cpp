@@ -37,10 +37,11 @@ TEST(RealismBands, ComparisonFlagsWhatDiffers) {
 
 TEST(RealismBands, SimulatedStatisticsWithinFactor1p5OfRealOxford) {
 #ifdef RADARSLAM_SANITIZED_BUILD
-  // The simulator is not bit-identical across compilers, and one statistic sits on the edge: the
-  // 80-160 m azimuth correlation length is 1.30 deg with GCC -O3 (Release; passes only by the
-  // half-azimuth-step tolerance) and 1.36 deg with clang -O1 (this build) vs 0.87 deg real. The
-  // Release stage asserts the table; docs/simulator.md "Realism" records the margin.
+  // The simulator is not bit-identical across compilers, and two statistics sit near the edge
+  // (GCC -O3, Release): the 2-10 m Algorithm-1 peak density (x1.42) and the 80-160 m azimuth
+  // correlation length (x1.39; before the streak calibration of 2026-12-07 1.50 with GCC and 1.57
+  // with clang -O1, this build). The Release stage asserts the table; docs/simulator.md "Realism"
+  // records the margins.
   GTEST_SKIP() << "realism is asserted in the Release build (compiler-dependent edge statistic)";
 #endif
   RADARSLAM_REQUIRE_REAL_DATA(dir, "oxford_radar_robotcar_tiny");

@@ -85,6 +85,8 @@ void loadPhysics(const YamlParams& y, RadarPhysics& p) {
   y.get("streak_threshold_power", p.streak_threshold_power, Range::above(0, 1e+30));
   y.get("streak_power", p.streak_power, Range::closed(0, 1e+20));
   y.get("streak_probability", p.streak_probability, Range::closed(0, 1));
+  y.get("streak_excess_min_db", p.streak_excess_min_db, Range::closed(0, 100));
+  y.get("streak_excess_scale_db", p.streak_excess_scale_db, Range::closed(0, 100));
   y.get("multipath_db", p.multipath_db, Range::closed(-200, 0));
   y.get("multipath_min_cos", p.multipath_min_cos, Range::closed(0, 1));
   y.get("ground_clutter_power", p.ground_clutter_power, Range::closed(0, 1e+20));
@@ -358,8 +360,18 @@ struct RadarRenderer::Impl {
     }
   }
 
+  /// One streak's added power (RadarPhysics::streak_excess_min_db, streak_excess_scale_db).
+  float streakPower(Rng& rng) const {
+    if (p.streak_excess_scale_db <= 0) return static_cast<float>(p.streak_power);
+    const double excess_db =
+        p.streak_excess_min_db - p.streak_excess_scale_db * std::log(1.0 - rng.uniform());
+    return static_cast<float>(std::min(p.streak_power, p.noise_floor_power * (dbToLinear(excess_db) - 1.0)));
+  }
+
   void speckleAndQuantise(std::uint64_t scan_index, CObservationRadarScan& out) {
     Rng rng(hashCombine(hashCombine(seed, 0x5EC), scan_index));
+    // Streak strengths from their own stream, so that they leave the speckle draws unchanged.
+    Rng streak_rng(hashCombine(hashCombine(seed, 0x57EA), scan_index));
     const int A = g.azimuths, B = g.bins;
     const float alpha = static_cast<float>(p.speckle_range_corr),
                 beta = static_cast<float>(p.speckle_azimuth_corr);
@@ -377,7 +389,7 @@ struct RadarRenderer::Impl {
       float streak = 0;
       if (max_direct[static_cast<std::size_t>(a)] > p.streak_threshold_power &&
           rng.chance(p.streak_probability))
-        streak = static_cast<float>(p.streak_power);
+        streak = streakPower(streak_rng);
       float keep = 1.0f, keep_floor = 1.0f;
       if (blank_half > 0 &&
           std::abs(std::remainder(g.angle(a) - blank_centre, 2 * std::numbers::pi)) < blank_half)

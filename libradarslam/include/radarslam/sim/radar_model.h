@@ -70,16 +70,23 @@ struct RadarPhysics {
   double near_clutter_range_m = 1.6;    ///< valid [0, 1000]
   double saturation_amplitude = 6.0e6;  ///< receiver clips here (pixel ~136); valid (0, 1e+20]
   double streak_threshold_power = 1.5e8;  ///< a return this strong saturates the receiver; valid (0, 1e+30]
-  double streak_power = 3.0e3;            ///< ...raising the whole azimuth by this power; valid [0, 1e+20]
-  double streak_probability = 0.1;        ///< chance a saturating azimuth shows the streak; valid [0, 1]
-  double multipath_db = -14;              ///< ghost power relative to the direct return; valid [-200, 0]
-  double multipath_min_cos = 0.55;        ///< only near-normal specular walls make ghosts; valid [0, 1]
-  double ground_clutter_power = 1200;     ///< road/grass returns of the fan beam at 10 m; valid [0, 1e+20]
+  double streak_power = 3.0e3;      ///< ...raising the whole azimuth by at most this power; valid [0, 1e+20]
+  double streak_probability = 0.1;  ///< chance a saturating azimuth shows the streak; valid [0, 1]
+  /// A streak's strength: its excess over the far noise floor (noise_floor_power) is
+  /// streak_excess_min_db + an exponential draw of mean streak_excess_scale_db, capped at
+  /// streak_power. Fitted to the real Oxford scans' streaks (docs/simulator.md, "Saturation
+  /// streaks"): most are 6-10 codes (1 code ~ 1 dB), few reach 15. Scale 0 = every streak at
+  /// streak_power (the model before 2026-12-07).
+  double streak_excess_min_db = 6;     ///< valid [0, 100]
+  double streak_excess_scale_db = 4;   ///< valid [0, 100]
+  double multipath_db = -14;           ///< ghost power relative to the direct return; valid [-200, 0]
+  double multipath_min_cos = 0.55;     ///< only near-normal specular walls make ghosts; valid [0, 1]
+  double ground_clutter_power = 1200;  ///< road/grass returns of the fan beam at 10 m; valid [0, 1e+20]
   double ground_clutter_exponent =
       1.2;  ///< ...falling as range^-exponent, up to the first wall; valid [0, 10]
   /// Clutter the fan beam still sees beyond the first opaque wall (over low buildings: upper
   /// storeys, roofs, trees), as a fraction of the ground clutter there; valid [0, 1]
-  double ground_beyond_wall = 0.05;
+  double ground_beyond_wall = 0.1;
   double ground_texture_m = 0.7;  ///< ground patches (stable across scans); valid (0, 1000]
   /// Patch reflectivity 0.02 + ground_texture_peak * u^ground_texture_power (u uniform): most
   /// of the road is dark, a few patches (kerbs, drains, grass tufts) are bright scatterers.
